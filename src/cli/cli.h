@@ -1,0 +1,38 @@
+/* Shared pieces of the neuv command line: errors, progress, arguments. */
+#ifndef NEUV_CLI_CLI_H
+#define NEUV_CLI_CLI_H
+
+#include "neuv/neuv.h"
+
+/* Global flags parsed before the command runs. */
+typedef struct cli_options {
+    int quiet;   /* --quiet: no progress, no info messages */
+    int threads; /* --threads T (0 = library default) */
+} cli_options;
+extern cli_options cli_opts;
+
+/* Prints `neuv: error: WHAT: message` on one line and returns 2 (usage/bad input).
+ * `what` is usually the file name; NULL omits it. */
+int cli_error(const char *what, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Prints the library's last error for a failed call on `what`; returns its exit code. */
+int cli_fail(const char *what, neuv_status status);
+
+/* Installs the progress bar (stderr, only on a terminal and without --quiet)
+ * and the message logger. */
+void cli_install_callbacks(void);
+/* Ends a progress line so the next output starts on a fresh line. */
+void cli_progress_done(void);
+
+/* Argument helpers: return 1 when argv[*i] is `name` and consume its value
+ * into *out (advancing *i); print an error and set *bad when the value is
+ * missing or malformed. */
+int cli_arg_str(int argc, char **argv, int *i, const char *name, const char **out, int *bad);
+int cli_arg_int(int argc, char **argv, int *i, const char *name, int *out, int *bad);
+int cli_arg_double(int argc, char **argv, int *i, const char *name, double *out, int *bad);
+/* Consumes the global flags (--quiet, --threads T) wherever they stand. */
+int cli_arg_global(int argc, char **argv, int *i, int *bad);
+
+/* Refuses to write onto an input file; returns 0 when `out` is safe. */
+int cli_check_output_not_input(const char *out, const char *in);
+
+#endif

@@ -1,0 +1,164 @@
+#include "cli/cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/timer.h"
+
+cli_options cli_opts;
+
+int cli_error(const char *what, const char *fmt, ...)
+{
+    cli_progress_done();
+    char msg[768];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    /* Keep it to one line whatever the message holds. */
+    for (char *p = msg; *p; p++) if (*p == '\n' || *p == '\r') *p = ' ';
+    if (what) fprintf(stderr, "neuv: error: %s: %s\n", what, msg);
+    else fprintf(stderr, "neuv: error: %s\n", msg);
+    return 2;
+}
+
+int cli_fail(const char *what, neuv_status status)
+{
+    const char *msg = neuv_last_error();
+    cli_error(what, "%s", msg && *msg ? msg : neuv_status_name(status));
+    return neuv_exit_code(status);
+}
+
+/* ---- progress bar ---------------------------------------------------- */
+
+static struct {
+    int active;        /* a partial line is on the terminal */
+    char stage[64];
+    double stage_start;
+    double last_draw;
+} bar;
+
+static void progress_cb(void *user, const char *stage, double fraction, const char *detail)
+{
+    (void)user;
+    double now = now_seconds();
+    if (strncmp(bar.stage, stage, sizeof bar.stage - 1) != 0) {
+        snprintf(bar.stage, sizeof bar.stage, "%s", stage);
+        bar.stage_start = now;
+        bar.last_draw = 0;
+    }
+    if (fraction < 1.0 && now - bar.last_draw < 0.1) return; /* at most 10 redraws a second */
+    bar.last_draw = now;
+    if (fraction < 0) fraction = 0;
+    if (fraction > 1) fraction = 1;
+    const int width = 24;
+    char cells[32];
+    int filled = (int)(fraction * width + 0.5);
+    for (int i = 0; i < width; i++) cells[i] = i < filled ? '#' : '.';
+    cells[width] = '\0';
+    double elapsed = now - bar.stage_start;
+    char eta[32] = "";
+    if (fraction > 0.02 && fraction < 1.0) {
+        double left = elapsed * (1.0 - fraction) / fraction;
+        snprintf(eta, sizeof eta, " ETA %dm%02ds", (int)(left / 60), (int)fmod(left, 60));
+    }
+    fprintf(stderr, "\r\033[K%-10s [%s] %3d%% %s%s", stage, cells, (int)(fraction * 100 + 0.5),
+            detail ? detail : "", eta);
+    fflush(stderr);
+    bar.active = 1;
+}
+
+static void log_cb(void *user, neuv_log_level level, const char *message)
+{
+    (void)user;
+    if (level == NEUV_LOG_DEBUG && !getenv("NEUV_DEBUG")) return;
+    if (cli_opts.quiet && level < NEUV_LOG_WARN) return;
+    cli_progress_done();
+    fprintf(stderr, "neuv: %s%s\n", level == NEUV_LOG_WARN ? "warning: " : "", message);
+}
+
+void cli_install_callbacks(void)
+{
+    int show_bar = !cli_opts.quiet && isatty(STDERR_FILENO);
+    neuv_set_callbacks(log_cb, show_bar ? progress_cb : NULL, NULL);
+}
+
+void cli_progress_done(void)
+{
+    if (bar.active) { fputs("\r\033[K", stderr); fflush(stderr); bar.active = 0; }
+}
+
+/* ---- arguments ------------------------------------------------------- */
+
+int cli_arg_str(int argc, char **argv, int *i, const char *name, const char **out, int *bad)
+{
+    if (strcmp(argv[*i], name) != 0) return 0;
+    if (*i + 1 >= argc) { cli_error(NULL, "%s needs a value", name); *bad = 1; return 1; }
+    *out = argv[++*i];
+    return 1;
+}
+
+int cli_arg_int(int argc, char **argv, int *i, const char *name, int *out, int *bad)
+{
+    const char *s = NULL;
+    if (!cli_arg_str(argc, argv, i, name, &s, bad)) return 0;
+    if (*bad) return 1;
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || *end || end == s || v < -2147483647L || v > 2147483647L) {
+        cli_error(NULL, "%s expects an integer, got '%s'", name, s);
+        *bad = 1;
+        return 1;
+    }
+    *out = (int)v;
+    return 1;
+}
+
+int cli_arg_double(int argc, char **argv, int *i, const char *name, double *out, int *bad)
+{
+    const char *s = NULL;
+    if (!cli_arg_str(argc, argv, i, name, &s, bad)) return 0;
+    if (*bad) return 1;
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || *end || end == s || !isfinite(v)) {
+        cli_error(NULL, "%s expects a number, got '%s'", name, s);
+        *bad = 1;
+        return 1;
+    }
+    *out = v;
+    return 1;
+}
+
+int cli_arg_global(int argc, char **argv, int *i, int *bad)
+{
+    if (!strcmp(argv[*i], "--quiet") || !strcmp(argv[*i], "-q")) {
+        cli_opts.quiet = 1;
+        cli_install_callbacks();
+        return 1;
+    }
+    if (cli_arg_int(argc, argv, i, "--threads", &cli_opts.threads, bad)) {
+        if (!*bad && cli_opts.threads < 1) {
+            cli_error(NULL, "--threads must be at least 1");
+            *bad = 1;
+        }
+        return 1;
+    }
+    return 0;
+}
+
+int cli_check_output_not_input(const char *out, const char *in)
+{
+    struct stat so, si;
+    if (stat(out, &so) == 0 && stat(in, &si) == 0 && so.st_dev == si.st_dev && so.st_ino == si.st_ino)
+        return cli_error(out, "output would overwrite the input file");
+    return 0;
+}

@@ -1,0 +1,43 @@
+/* neuv command line: dispatches to one function per subcommand. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "cli/commands.h"
+
+typedef struct command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *usage;
+} command;
+
+static const command commands[] = {
+    /* Each command adds one line here, in the order of SPEC.md section 3. */
+    {NULL, NULL, NULL},
+};
+
+static void usage(FILE *out)
+{
+    fprintf(out, "neuv %s — neural UV unwrapping\n\nusage: neuv COMMAND [options]\n\ncommands:\n",
+            neuv_version());
+    for (size_t i = 0; commands[i].name; i++)
+        fprintf(out, "  neuv %s\n", commands[i].usage);
+    fprintf(out, "\nglobal options: --quiet, --threads T\n"
+                 "exit codes: 0 success, 2 bad input or usage, 1 internal error\n");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) { usage(stderr); return 2; }
+    const char *name = argv[1];
+    if (!strcmp(name, "-h") || !strcmp(name, "--help") || !strcmp(name, "help")) { usage(stdout); return 0; }
+    if (!strcmp(name, "--version") || !strcmp(name, "version")) { printf("neuv %s\n", neuv_version()); return 0; }
+    for (size_t i = 0; commands[i].name; i++)
+        if (!strcmp(name, commands[i].name)) {
+            cli_install_callbacks();
+            int rc = commands[i].run(argc - 1, argv + 1);
+            cli_progress_done();
+            return rc;
+        }
+    return cli_error(NULL, "unknown command '%s' (try neuv --help)", name);
+}

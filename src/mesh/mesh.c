@@ -1,0 +1,110 @@
+#include "mesh/mesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+neuv_mesh *mesh_create(int nv, int nf, int nuv)
+{
+    neuv_mesh *m = calloc(1, sizeof *m);
+    if (!m) return NULL;
+    m->nv = nv;
+    m->nf = nf;
+    m->pos = calloc((size_t)(nv > 0 ? nv : 1) * 3, sizeof(double));
+    m->tri = calloc((size_t)(nf > 0 ? nf : 1) * 3, sizeof(int));
+    if (!m->pos || !m->tri) { mesh_free(m); return NULL; }
+    if (nuv > 0) {
+        m->nuv = nuv;
+        m->uv = calloc((size_t)nuv * 2, sizeof(double));
+        m->tri_uv = calloc((size_t)(nf > 0 ? nf : 1) * 3, sizeof(int));
+        if (!m->uv || !m->tri_uv) { mesh_free(m); return NULL; }
+    }
+    return m;
+}
+
+neuv_mesh *mesh_clone(const neuv_mesh *m)
+{
+    neuv_mesh *c = mesh_create(m->nv, m->nf, m->nuv);
+    if (!c) return NULL;
+    memcpy(c->pos, m->pos, sizeof(double) * 3 * (size_t)m->nv);
+    memcpy(c->tri, m->tri, sizeof(int) * 3 * (size_t)m->nf);
+    if (m->nuv > 0) {
+        memcpy(c->uv, m->uv, sizeof(double) * 2 * (size_t)m->nuv);
+        memcpy(c->tri_uv, m->tri_uv, sizeof(int) * 3 * (size_t)m->nf);
+    }
+    return c;
+}
+
+neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_uv)
+{
+    free(m->uv); free(m->tri_uv);
+    m->uv = NULL; m->tri_uv = NULL; m->nuv = 0;
+    if (nuv <= 0) return NEUV_OK;
+    m->uv = malloc(sizeof(double) * 2 * (size_t)nuv);
+    m->tri_uv = malloc(sizeof(int) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
+    if (!m->uv || !m->tri_uv) {
+        free(m->uv); free(m->tri_uv); m->uv = NULL; m->tri_uv = NULL;
+        return neuv_fail_nomem("UVs");
+    }
+    m->nuv = nuv;
+    memcpy(m->uv, uv, sizeof(double) * 2 * (size_t)nuv);
+    memcpy(m->tri_uv, tri_uv, sizeof(int) * 3 * (size_t)m->nf);
+    return NEUV_OK;
+}
+
+void mesh_free(neuv_mesh *m)
+{
+    if (!m) return;
+    free(m->pos); free(m->tri); free(m->uv); free(m->tri_uv);
+    free(m);
+}
+
+void neuv_mesh_free(neuv_mesh *m) { mesh_free(m); }
+int neuv_mesh_vertex_count(const neuv_mesh *m) { return m ? m->nv : 0; }
+int neuv_mesh_face_count(const neuv_mesh *m) { return m ? m->nf : 0; }
+int neuv_mesh_has_uv(const neuv_mesh *m) { return m && m->nuv > 0; }
+
+static void face_cross(const neuv_mesh *m, int f, double c[3])
+{
+    const double *a = m->pos + 3 * m->tri[3 * f], *b = m->pos + 3 * m->tri[3 * f + 1],
+                 *d = m->pos + 3 * m->tri[3 * f + 2];
+    double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    double e2[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    c[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    c[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    c[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
+double mesh_face_area(const neuv_mesh *m, int f)
+{
+    double c[3];
+    face_cross(m, f, c);
+    return 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+void mesh_face_normal(const neuv_mesh *m, int f, double n[3])
+{
+    face_cross(m, f, n);
+    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (l > 0) { n[0] /= l; n[1] /= l; n[2] /= l; }
+}
+
+double mesh_total_area(const neuv_mesh *m)
+{
+    double a = 0;
+    for (int f = 0; f < m->nf; f++) a += mesh_face_area(m, f);
+    return a;
+}
+
+void mesh_bounding_box(const neuv_mesh *m, double lo[3], double hi[3])
+{
+    for (int k = 0; k < 3; k++) { lo[k] = m->nv ? m->pos[k] : 0; hi[k] = lo[k]; }
+    for (int v = 0; v < m->nv; v++)
+        for (int k = 0; k < 3; k++) {
+            double x = m->pos[3 * v + k];
+            if (x < lo[k]) lo[k] = x;
+            if (x > hi[k]) hi[k] = x;
+        }
+}
