@@ -1,0 +1,211 @@
+#include "io/mesh_builder.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "io/polygon_triangulate.h"
+
+/* nv and nf are ints everywhere in neuv, and index arithmetic uses 3*nf. */
+#define MAX_ITEMS ((size_t)INT_MAX / 4)
+
+void mesh_builder_init(mesh_builder *b) { memset(b, 0, sizeof *b); }
+
+void mesh_builder_free(mesh_builder *b)
+{
+    free(b->pos); free(b->uv); free(b->tri); free(b->tri_uv); free(b->origin);
+    free(b->scratch_pos); free(b->scratch_xy); free(b->scratch_idx); free(b->scratch_tri);
+    mesh_builder_init(b);
+}
+
+static int grow(void **p, size_t *cap, size_t need, size_t item)
+{
+    if (need <= *cap) return 1;
+    size_t c = *cap ? *cap : 256;
+    while (c < need) c *= 2;
+    void *q = realloc(*p, c * item);
+    if (!q) return 0;
+    *p = q;
+    *cap = c;
+    return 1;
+}
+
+static neuv_status grow_vertices(mesh_builder *b, size_t need)
+{
+    if (need > MAX_ITEMS) return neuv_fail(NEUV_ERR_INPUT, "more than %zu vertices; too large for neuv", MAX_ITEMS);
+    return grow((void **)&b->pos, &b->cap_v, need, 3 * sizeof(double)) ? NEUV_OK : neuv_fail_nomem("vertices");
+}
+
+static neuv_status grow_uvs(mesh_builder *b, size_t need)
+{
+    if (need > MAX_ITEMS) return neuv_fail(NEUV_ERR_INPUT, "more than %zu texture coordinates; too large for neuv", MAX_ITEMS);
+    return grow((void **)&b->uv, &b->cap_uv, need, 2 * sizeof(double)) ? NEUV_OK : neuv_fail_nomem("texture coordinates");
+}
+
+static neuv_status grow_faces(mesh_builder *b, size_t need)
+{
+    if (need > MAX_ITEMS) return neuv_fail(NEUV_ERR_INPUT, "more than %zu triangles; too large for neuv", MAX_ITEMS);
+    if (need <= b->cap_f) return NEUV_OK;
+    size_t c1 = b->cap_f, c2 = b->cap_f, c3 = b->cap_f;
+    if (!grow((void **)&b->tri, &c1, need, 3 * sizeof(int)) ||
+        !grow((void **)&b->tri_uv, &c2, need, 3 * sizeof(int)) ||
+        !grow((void **)&b->origin, &c3, need, sizeof(int)))
+        return neuv_fail_nomem("faces");
+    b->cap_f = c1;
+    return NEUV_OK;
+}
+
+neuv_status mesh_builder_reserve(mesh_builder *b, long long nv, long long nf)
+{
+    neuv_status s;
+    if (nv > 0 && (s = grow_vertices(b, (size_t)nv)) != NEUV_OK) return s;
+    if (nf > 0 && (s = grow_faces(b, (size_t)nf)) != NEUV_OK) return s;
+    return NEUV_OK;
+}
+
+neuv_status mesh_builder_add_vertex(mesh_builder *b, double x, double y, double z)
+{
+    if ((size_t)b->nv >= b->cap_v) {
+        neuv_status s = grow_vertices(b, (size_t)b->nv + 1);
+        if (s != NEUV_OK) return s;
+    }
+    double *p = b->pos + 3 * (size_t)b->nv++;
+    p[0] = x; p[1] = y; p[2] = z;
+    return NEUV_OK;
+}
+
+neuv_status mesh_builder_add_uv(mesh_builder *b, double u, double v)
+{
+    if ((size_t)b->nuv >= b->cap_uv) {
+        neuv_status s = grow_uvs(b, (size_t)b->nuv + 1);
+        if (s != NEUV_OK) return s;
+    }
+    double *p = b->uv + 2 * (size_t)b->nuv++;
+    p[0] = u; p[1] = v;
+    return NEUV_OK;
+}
+
+static void put_triangle(mesh_builder *b, int a, int c, int d, const int *uv, int ua, int uc, int ud, int origin)
+{
+    int *t = b->tri + 3 * (size_t)b->nf, *tu = b->tri_uv + 3 * (size_t)b->nf;
+    t[0] = a; t[1] = c; t[2] = d;
+    if (uv) { tu[0] = ua; tu[1] = uc; tu[2] = ud; }
+    else tu[0] = tu[1] = tu[2] = -1;
+    b->origin[b->nf++] = origin;
+}
+
+neuv_status mesh_builder_add_polygon(mesh_builder *b, int n, const int *v, const int *uv, int origin)
+{
+    neuv_status s = grow_faces(b, (size_t)b->nf + (size_t)(n - 2));
+    if (s != NEUV_OK) return s;
+    if (uv) b->faces_with_uv++;
+    else b->faces_without_uv++;
+    if (n == 3) {
+        put_triangle(b, v[0], v[1], v[2], uv, uv ? uv[0] : 0, uv ? uv[1] : 0, uv ? uv[2] : 0, origin);
+        return NEUV_OK;
+    }
+    if ((size_t)n > b->cap_scratch) {
+        size_t c = (size_t)n * 2;
+        double *sp = realloc(b->scratch_pos, c * 3 * sizeof(double));
+        if (sp) b->scratch_pos = sp;
+        double *sx = realloc(b->scratch_xy, c * 2 * sizeof(double));
+        if (sx) b->scratch_xy = sx;
+        int *si = realloc(b->scratch_idx, c * sizeof(int));
+        if (si) b->scratch_idx = si;
+        int *st = realloc(b->scratch_tri, c * 3 * sizeof(int));
+        if (st) b->scratch_tri = st;
+        if (!sp || !sx || !si || !st) return neuv_fail_nomem("a polygon");
+        b->cap_scratch = c;
+    }
+    /* A corner outside the vertices seen so far is reported by finish; the
+     * polygon is then fanned, as its shape is unknown. */
+    int known = 1;
+    for (int i = 0; i < n; i++) {
+        if (v[i] < 0 || v[i] >= b->nv) { known = 0; break; }
+        memcpy(b->scratch_pos + 3 * i, b->pos + 3 * (size_t)v[i], 3 * sizeof(double));
+    }
+    if (!known) memset(b->scratch_pos, 0, (size_t)n * 3 * sizeof(double));
+    polygon_triangulate(n, b->scratch_pos, b->scratch_tri, b->scratch_xy, b->scratch_idx);
+    for (int t = 0; t < n - 2; t++) {
+        const int *c = b->scratch_tri + 3 * t;
+        put_triangle(b, v[c[0]], v[c[1]], v[c[2]], uv, uv ? uv[c[0]] : 0, uv ? uv[c[1]] : 0,
+                     uv ? uv[c[2]] : 0, origin);
+    }
+    return NEUV_OK;
+}
+
+static neuv_status bad_index(mesh_builder_style st, int origin, const char *what, const char *whats,
+                             int index, int count)
+{
+    if (st.origin_is_line)
+        return neuv_fail(NEUV_ERR_INPUT, "line %d: face references %s %d, but there are %d %s",
+                         origin, what, index + st.index_base, count, whats);
+    return neuv_fail(NEUV_ERR_INPUT, "face %d references %s %d, but there are %d %s",
+                     origin, what, index + st.index_base, count, whats);
+}
+
+neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style st, neuv_mesh **out)
+{
+    *out = NULL;
+    neuv_status s = NEUV_OK;
+    if (b->nf == 0) {
+        s = neuv_fail(NEUV_ERR_INPUT, "no faces (a point cloud?); neuv needs a triangle mesh");
+        goto done;
+    }
+    for (int i = 0; i < b->nv; i++) {
+        const double *p = b->pos + 3 * (size_t)i;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
+            s = neuv_fail(NEUV_ERR_INPUT, "vertex %d has a non-finite coordinate", i + st.index_base);
+            goto done;
+        }
+    }
+    for (size_t k = 0; k < 3 * (size_t)b->nf; k++)
+        if (b->tri[k] < 0 || b->tri[k] >= b->nv) {
+            s = bad_index(st, b->origin[k / 3], "vertex", "vertices", b->tri[k], b->nv);
+            goto done;
+        }
+    int keep_uv = b->faces_with_uv > 0 && b->faces_without_uv == 0;
+    if (b->faces_with_uv > 0 && b->faces_without_uv > 0)
+        neuv_log(NEUV_LOG_WARN, "%d of %d faces have no texture coordinates; UVs dropped",
+                 b->faces_without_uv, b->faces_with_uv + b->faces_without_uv);
+    if (keep_uv) {
+        for (size_t k = 0; k < 3 * (size_t)b->nf; k++)
+            if (b->tri_uv[k] < 0 || b->tri_uv[k] >= b->nuv) {
+                s = bad_index(st, b->origin[k / 3], "texture coordinate", "texture coordinates", b->tri_uv[k], b->nuv);
+                goto done;
+            }
+        for (int i = 0; i < b->nuv; i++)
+            if (!isfinite(b->uv[2 * (size_t)i]) || !isfinite(b->uv[2 * (size_t)i + 1])) {
+                s = neuv_fail(NEUV_ERR_INPUT, "texture coordinate %d is not finite", i + st.index_base);
+                goto done;
+            }
+    }
+
+    neuv_mesh *m = calloc(1, sizeof *m);
+    if (!m) { s = neuv_fail_nomem("a mesh"); goto done; }
+    /* Hand the arrays over, shrunk to size (a failed shrink keeps the block). */
+    m->nv = b->nv;
+    m->nf = b->nf;
+    m->pos = b->pos; b->pos = NULL;
+    m->tri = b->tri; b->tri = NULL;
+    double *pp = realloc(m->pos, 3 * sizeof(double) * (size_t)(m->nv > 0 ? m->nv : 1));
+    if (pp) m->pos = pp;
+    int *tp = realloc(m->tri, 3 * sizeof(int) * (size_t)m->nf);
+    if (tp) m->tri = tp;
+    if (keep_uv && b->nuv > 0) {
+        m->nuv = b->nuv;
+        m->uv = b->uv; b->uv = NULL;
+        m->tri_uv = b->tri_uv; b->tri_uv = NULL;
+        double *up = realloc(m->uv, 2 * sizeof(double) * (size_t)m->nuv);
+        if (up) m->uv = up;
+        int *tup = realloc(m->tri_uv, 3 * sizeof(int) * (size_t)m->nf);
+        if (tup) m->tri_uv = tup;
+    }
+    *out = m;
+done:
+    mesh_builder_free(b);
+    return s;
+}

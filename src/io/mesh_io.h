@@ -1,0 +1,40 @@
+/* Per-format readers and writers behind neuv_mesh_load / neuv_mesh_save
+ * (mesh_io.c picks one by the file's extension).
+ *
+ * Readers take the whole file in memory (NUL-terminated; `len` bytes before
+ * the NUL) and produce a mesh exactly as the file has it: vertex order and
+ * float64 values preserved, polygons triangulated, UVs per corner. They
+ * validate (indices in range, finite coordinates, at least one face) but
+ * never weld or clean; that is mesh/clean.h's job.
+ *
+ * Writers write to an open file (an atomic_file's temporary); the caller
+ * commits or aborts. */
+#ifndef NEUV_IO_MESH_IO_H
+#define NEUV_IO_MESH_IO_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "mesh/mesh.h"
+
+/* Wavefront OBJ: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices). */
+neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out);
+/* OFF and its COFF/NOFF/STOFF variants, with # comments. */
+neuv_status io_read_off(const char *text, size_t len, neuv_mesh **out);
+/* PLY: ascii, binary_little_endian, binary_big_endian. */
+neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out);
+/* Any format Assimp reads (STL, glTF/GLB, FBX, ...), meshes concatenated with
+ * their node transforms applied. */
+neuv_status io_read_assimp(const char *path, neuv_mesh **out);
+/* 1 when Assimp can read files with this extension (".stl"). */
+int io_assimp_supports(const char *ext);
+
+/* OBJ with v (exact decimal), vt and f v/vt (1-based); f v without UVs. */
+neuv_status io_write_obj(const neuv_mesh *m, FILE *fp);
+/* Binary little-endian PLY: double x,y,z, float s,t; seam vertices split. */
+neuv_status io_write_ply(const neuv_mesh *m, FILE *fp);
+/* glTF 2.0: binary .glb (binary = 1) or .gltf with the buffer embedded as a
+ * base64 data URI (binary = 0); seam vertices split. */
+neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary);
+
+#endif
