@@ -14,6 +14,7 @@ typedef struct mesh_clean_report {
     int nonmanifold_edges;      /* edges found with more than two faces */
     int nonmanifold_vertices;   /* vertices whose faces form more than one fan */
     int split_vertices;         /* vertices added when splitting non-manifold parts */
+    int nonorientable_components; /* components left as they are: no consistent orientation (Moebius) */
 } mesh_clean_report;
 
 typedef struct mesh_clean_options {
@@ -27,7 +28,19 @@ int mesh_weld_positions(neuv_mesh *m);
 
 /* All repairs, in order: weld, drop degenerate and duplicate faces, split
  * non-manifold edges and vertices, drop unreferenced vertices, orient each
- * component consistently (closed components outward). opts may be NULL. */
+ * component consistently (closed components outward). opts may be NULL.
+ *
+ * Degenerate: a repeated vertex or |cross product| <= 1e-14 times the
+ * longest edge squared. Non-manifold edge: the first face and the first
+ * later face running the other way (else the second face) stay attached,
+ * the others get their own copies of the two vertices. Non-manifold vertex:
+ * each fan of faces after the first (in face order) gets its own copy.
+ * Open components keep the orientation of most of their faces; closed
+ * ones point outward (positive signed volume). Non-orientable components
+ * are left as they are and counted. UVs stay with their corners.
+ * On error m is unchanged: NEUV_ERR_INPUT for out-of-range indices or, with
+ * split_nonmanifold == 0, a non-manifold edge or vertex (input numbering).
+ * Runs in O(F) expected time. */
 neuv_status mesh_clean(neuv_mesh *m, const mesh_clean_options *opts, mesh_clean_report *report);
 
 #endif

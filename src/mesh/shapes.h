@@ -16,14 +16,17 @@ neuv_mesh *shape_torus(double R, double r, int nu, int nv);
 /* Flat grid in z = 0 over [0,w] by [0,h] with nx by ny cells (each split in two);
  * with_uv: per-corner UVs equal to (x, y) (identity map). */
 neuv_mesh *shape_grid(int nx, int ny, double w, double h, int with_uv);
-/* Open cylinder around z, radius r, height h (no caps). */
+/* Open cylinder around z, radius r, z in [-h/2, h/2] (no caps): two boundary loops. */
 neuv_mesh *shape_cylinder(double r, double h, int slices, int stacks);
-/* Capsule around z: cylinder of radius r and height h closed by hemispheres. */
+/* Capsule around z: cylinder of radius r, z in [-h/2, h/2], closed by hemispheres
+ * with `stacks` rings from pole to equator. */
 neuv_mesh *shape_capsule(double r, double h, int slices, int stacks);
 /* Axis-aligned cube [-1,1]^3, each side an n by n grid of quads split in two. */
 neuv_mesh *shape_cube(int n);
-/* A closed surface of genus 2: a thick plate with two square holes,
- * `n` controls resolution (cells along the short side). */
+/* A closed surface of genus 2: a thick plate [-2.5,2.5] x [-1.5,1.5] x
+ * [-0.5,0.5] with two unit square holes through it, built as the boundary
+ * of 5n by 3n by n voxels, so `n` is the number of cells per unit length
+ * (n = 1: 100 faces; faces grow as n^2). Area 50, volume 13. */
 neuv_mesh *shape_genus2(int n);
 
 #endif

@@ -1,0 +1,165 @@
+/* Procedural shapes: counts, topology, orientation and analytic areas. */
+#include "check.h"
+
+#include "mesh/edge_map.h"
+#include "mesh/shapes.h"
+#include "mesh/signed_volume.h"
+#include "mesh/topology.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* 1 when every directed edge occurs once (manifold, consistently oriented)
+ * and, for a closed shape, its reverse occurs too (watertight). */
+static int oriented_manifold(const neuv_mesh *m, int closed)
+{
+    edge_map e;
+    if (edge_map_init(&e, (size_t)m->nf * 3) != 0) return 0;
+    int ok = 1;
+    for (int f = 0; f < m->nf && ok; f++)
+        for (int k = 0; k < 3; k++) {
+            int a = m->tri[3 * f + k], b = m->tri[3 * f + (k + 1) % 3], ins;
+            if (a == b || !edge_map_slot(&e, a, b, f, &ins) || !ins) ok = 0;
+        }
+    for (int f = 0; f < m->nf && ok && closed; f++)
+        for (int k = 0; k < 3; k++)
+            if (edge_map_get(&e, m->tri[3 * f + (k + 1) % 3], m->tri[3 * f + k]) < 0) ok = 0;
+    edge_map_free(&e);
+    return ok;
+}
+
+static int min_area_positive(const neuv_mesh *m)
+{
+    for (int f = 0; f < m->nf; f++)
+        if (!(mesh_face_area(m, f) > 1e-12)) return 0;
+    return 1;
+}
+
+/* Checks topology of the whole mesh and returns it. */
+static component_topology topo(const neuv_mesh *m)
+{
+    component_topology t;
+    memset(&t, 0, sizeof t);
+    CHECK(mesh_subset_topology(m, NULL, 0, &t) == NEUV_OK);
+    int *comp = malloc(sizeof(int) * (size_t)m->nf);
+    CHECK_INT(mesh_face_components(m, comp), 1);
+    free(comp);
+    return t;
+}
+
+int main(void)
+{
+    /* Icosphere: V = 10*4^L + 2, F = 20*4^L, closed genus 0, area -> 4 pi r^2. */
+    neuv_mesh *m = shape_icosphere(4, 1.0);
+    CHECK(m != NULL);
+    CHECK_INT(m->nv, 2562);
+    CHECK_INT(m->nf, 5120);
+    component_topology t = topo(m);
+    CHECK_INT(t.genus, 0); CHECK_INT(t.euler, 2); CHECK(t.closed); CHECK_INT(t.boundary_loops, 0);
+    CHECK(oriented_manifold(m, 1));
+    CHECK(fabs(mesh_total_area(m) - 4 * M_PI) < 0.01 * 4 * M_PI);
+    CHECK(mesh_signed_volume(m, NULL, 0) > 0);
+    for (int v = 0; v < m->nv; v++) {
+        double *p = m->pos + 3 * v;
+        if (fabs(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] - 1) > 1e-12) { CHECK(0); break; }
+    }
+    mesh_free(m);
+    m = shape_icosphere(5, 2.0);
+    CHECK_INT(m->nv, 10242); CHECK_INT(m->nf, 20480);
+    CHECK(fabs(mesh_total_area(m) - 16 * M_PI) < 0.003 * 16 * M_PI);
+    CHECK_NEAR(mesh_signed_volume(m, NULL, 0), 4.0 / 3 * M_PI * 8, 0.01 * 4.0 / 3 * M_PI * 8);
+    mesh_free(m);
+
+    /* UV sphere: 2 poles + (stacks-1) rings. */
+    m = shape_uv_sphere(32, 16, 1.0);
+    CHECK_INT(m->nv, 2 + 15 * 32);
+    CHECK_INT(m->nf, 2 * 32 * 16 - 2 * 32);
+    t = topo(m);
+    CHECK_INT(t.genus, 0); CHECK(t.closed);
+    CHECK(oriented_manifold(m, 1)); CHECK(min_area_positive(m));
+    CHECK(mesh_signed_volume(m, NULL, 0) > 0);
+    CHECK(fabs(mesh_total_area(m) - 4 * M_PI) < 0.02 * 4 * M_PI);
+    mesh_free(m);
+
+    /* Torus: area 4 pi^2 R r, volume 2 pi^2 R r^2, genus 1, Euler 0. */
+    m = shape_torus(2.0, 0.5, 96, 48);
+    CHECK_INT(m->nv, 96 * 48); CHECK_INT(m->nf, 2 * 96 * 48);
+    t = topo(m);
+    CHECK_INT(t.genus, 1); CHECK_INT(t.euler, 0); CHECK(t.closed);
+    CHECK(oriented_manifold(m, 1));
+    CHECK(fabs(mesh_total_area(m) - 4 * M_PI * M_PI * 2.0 * 0.5) < 0.01 * 4 * M_PI * M_PI);
+    CHECK_NEAR(mesh_signed_volume(m, NULL, 0), 2 * M_PI * M_PI * 2.0 * 0.25, 0.01 * M_PI * M_PI);
+    mesh_free(m);
+
+    /* Grid: disk, one loop of 2(nx+ny) edges, area w h, identity UVs. */
+    m = shape_grid(8, 5, 2.0, 1.0, 1);
+    CHECK_INT(m->nv, 9 * 6); CHECK_INT(m->nf, 80);
+    t = topo(m);
+    CHECK_INT(t.boundary_loops, 1); CHECK_INT(t.genus, 0); CHECK_INT(t.euler, 1); CHECK(!t.closed);
+    CHECK(oriented_manifold(m, 0));
+    CHECK_NEAR(mesh_total_area(m), 2.0, 1e-12);
+    CHECK_INT(m->nuv, m->nv);
+    int uv_ok = 1;
+    for (int c = 0; c < 3 * m->nf; c++) {
+        const double *p = m->pos + 3 * m->tri[c], *uv = m->uv + 2 * m->tri_uv[c];
+        if (p[0] != uv[0] || p[1] != uv[1]) uv_ok = 0;
+    }
+    CHECK(uv_ok);
+    double n[3];
+    mesh_face_normal(m, 0, n);
+    CHECK_NEAR(n[2], 1.0, 1e-12); /* counter-clockwise seen from +z */
+    mesh_free(m);
+    m = shape_grid(3, 3, 1, 1, 0);
+    CHECK(m->uv == NULL && m->tri_uv == NULL && m->nuv == 0);
+    mesh_free(m);
+
+    /* Open cylinder: annulus, 2 loops, genus 0, area 2 pi r h (inscribed polygon). */
+    m = shape_cylinder(1.0, 2.0, 64, 10);
+    CHECK_INT(m->nv, 64 * 11); CHECK_INT(m->nf, 2 * 64 * 10);
+    t = topo(m);
+    CHECK_INT(t.boundary_loops, 2); CHECK_INT(t.genus, 0); CHECK_INT(t.euler, 0);
+    CHECK(oriented_manifold(m, 0));
+    CHECK(fabs(mesh_total_area(m) - 4 * M_PI) < 0.01 * 4 * M_PI);
+    mesh_face_normal(m, 0, n);
+    const double *p0 = m->pos + 3 * m->tri[0];
+    CHECK(n[0] * p0[0] + n[1] * p0[1] > 0); /* outward */
+    mesh_free(m);
+
+    /* Capsule: closed genus 0, area 4 pi r^2 + 2 pi r h. */
+    m = shape_capsule(0.5, 1.0, 64, 16);
+    t = topo(m);
+    CHECK_INT(t.genus, 0); CHECK(t.closed);
+    CHECK(oriented_manifold(m, 1)); CHECK(min_area_positive(m));
+    CHECK(fabs(mesh_total_area(m) - (M_PI + M_PI)) < 0.01 * 2 * M_PI);
+    CHECK(mesh_signed_volume(m, NULL, 0) > 0);
+    mesh_free(m);
+
+    /* Cube: 6 n^2 quads, V = 6n^2 + 2, area 24, volume 8. */
+    m = shape_cube(4);
+    CHECK_INT(m->nf, 6 * 16 * 2); CHECK_INT(m->nv, 6 * 16 + 2);
+    t = topo(m);
+    CHECK_INT(t.genus, 0); CHECK(t.closed);
+    CHECK(oriented_manifold(m, 1));
+    CHECK_NEAR(mesh_total_area(m), 24.0, 1e-9);
+    CHECK_NEAR(mesh_signed_volume(m, NULL, 0), 8.0, 1e-9);
+    mesh_free(m);
+
+    /* Genus 2 plate: Euler -2, volume 15 - 2. */
+    for (int res = 1; res <= 3; res++) {
+        m = shape_genus2(res);
+        CHECK(m != NULL);
+        t = topo(m);
+        CHECK_INT(t.genus, 2); CHECK_INT(t.euler, -2); CHECK(t.closed);
+        CHECK(oriented_manifold(m, 1)); CHECK(min_area_positive(m));
+        CHECK_NEAR(mesh_signed_volume(m, NULL, 0), 13.0, 1e-9);
+        /* outer 2(15 + 5 + 3) + hole walls 2 * 4 */
+        CHECK_NEAR(mesh_total_area(m), 2 * (15 - 2) + 2 * (5 + 3) + 8, 1e-9);
+        mesh_free(m);
+    }
+
+    CHECK(shape_icosphere(-1, 1) == NULL);
+    CHECK(shape_torus(1, 0.5, 2, 3) == NULL);
+    CHECK(shape_grid(0, 3, 1, 1, 0) == NULL);
+    return check_report("test_shapes");
+}
