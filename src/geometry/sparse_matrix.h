@@ -29,5 +29,12 @@ void sparse_free(sparse_matrix *a);
 size_t sparse_nnz(const sparse_matrix *a);
 /* y = A x */
 void sparse_matvec(const sparse_matrix *a, const double *x, double *y);
+/* out = A + s diag(d): a copy of the square matrix A with s d_i added to
+ * entry (i, i) (created when absent).
+ * Inputs:  a #N by #N, d #N, s scalar
+ * Outputs: out #N by #N (caller frees with sparse_free) */
+neuv_status sparse_add_diagonal(const sparse_matrix *a, const double *d, double s, sparse_matrix *out);
+/* Deep copy of a. */
+neuv_status sparse_copy(const sparse_matrix *a, sparse_matrix *out);
 
 #endif

@@ -1,0 +1,182 @@
+#include "atlas/footprint.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Pixels are grown by this much so that the similarity applied to the final
+ * UVs (computed afresh, rounding differently) never leaves a marked pixel. */
+static const double raster_eps = 1e-7;
+
+static int footprint_alloc(footprint *f, int w, int h)
+{
+    f->w = w; f->h = h;
+    f->bits = calloc((size_t)w * (size_t)h > 0 ? (size_t)w * (size_t)h : 1, 1);
+    return f->bits ? 0 : -1;
+}
+
+void footprint_free(footprint *f)
+{
+    if (!f) return;
+    free(f->bits);
+    f->bits = NULL;
+    f->w = f->h = 0;
+}
+
+/* x-range of triangle (a,b,c) inside the horizontal slab y0 <= y <= y1;
+ * returns 0 when the triangle misses the slab. */
+static int slab_range(const double *a, const double *b, const double *c, double y0, double y1,
+                      double *xlo, double *xhi)
+{
+    const double *v[3] = {a, b, c};
+    double lo = INFINITY, hi = -INFINITY;
+    for (int k = 0; k < 3; k++) {
+        const double *s = v[k], *t = v[(k + 1) % 3];
+        if (s[1] >= y0 && s[1] <= y1) {
+            if (s[0] < lo) lo = s[0];
+            if (s[0] > hi) hi = s[0];
+        }
+        double ylo = s[1] < t[1] ? s[1] : t[1], yhi = s[1] < t[1] ? t[1] : s[1];
+        if (yhi == ylo) continue;
+        double ys[2] = {y0, y1};
+        for (int e = 0; e < 2; e++) {
+            if (ys[e] < ylo || ys[e] > yhi) continue;
+            double x = s[0] + (t[0] - s[0]) * (ys[e] - s[1]) / (t[1] - s[1]);
+            if (x < lo) lo = x;
+            if (x > hi) hi = x;
+        }
+    }
+    if (lo > hi) return 0;
+    *xlo = lo; *xhi = hi;
+    return 1;
+}
+
+int footprint_rasterize(const double *p, const int *tri, int ntri, int w, int h, footprint *out)
+{
+    if (footprint_alloc(out, w, h) != 0) return -1;
+    for (int t = 0; t < ntri; t++) {
+        const double *a = p + 2 * tri[3 * t], *b = p + 2 * tri[3 * t + 1], *c = p + 2 * tri[3 * t + 2];
+        double ymin = fmin(a[1], fmin(b[1], c[1])), ymax = fmax(a[1], fmax(b[1], c[1]));
+        int j0 = (int)floor(ymin - raster_eps), j1 = (int)floor(ymax + raster_eps);
+        if (j0 < 0) j0 = 0;
+        if (j1 > h - 1) j1 = h - 1;
+        for (int j = j0; j <= j1; j++) {
+            double xlo, xhi;
+            if (!slab_range(a, b, c, j - raster_eps, j + 1 + raster_eps, &xlo, &xhi)) continue;
+            int i0 = (int)floor(xlo - raster_eps), i1 = (int)floor(xhi + raster_eps);
+            if (i0 < 0) i0 = 0;
+            if (i1 > w - 1) i1 = w - 1;
+            if (i1 >= i0) memset(out->bits + (size_t)j * w + i0, 1, (size_t)(i1 - i0 + 1));
+        }
+    }
+    return 0;
+}
+
+int footprint_dilate(const footprint *in, int r, footprint *out)
+{
+    int w = in->w + 2 * r, h = in->h + 2 * r;
+    footprint tmp;
+    if (footprint_alloc(&tmp, w, in->h) != 0) return -1;
+    if (footprint_alloc(out, w, h) != 0) { footprint_free(&tmp); return -1; }
+    /* Separable: a square structuring element is a row max then a column max. */
+    for (int j = 0; j < in->h; j++) {
+        const unsigned char *src = in->bits + (size_t)j * in->w;
+        unsigned char *dst = tmp.bits + (size_t)j * w;
+        for (int i = 0; i < in->w; i++)
+            if (src[i]) memset(dst + i, 1, (size_t)(2 * r + 1));
+    }
+    for (int j = 0; j < in->h; j++) {
+        const unsigned char *src = tmp.bits + (size_t)j * w;
+        for (int d = 0; d <= 2 * r; d++) {
+            unsigned char *dst = out->bits + (size_t)(j + d) * w;
+            for (int i = 0; i < w; i++) dst[i] |= src[i];
+        }
+    }
+    footprint_free(&tmp);
+    return 0;
+}
+
+int footprint_rotate(const footprint *in, int k, footprint *out)
+{
+    k &= 3;
+    int w = in->w, h = in->h;
+    int ow = (k & 1) ? h : w, oh = (k & 1) ? w : h;
+    if (footprint_alloc(out, ow, oh) != 0) return -1;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) {
+            if (!in->bits[(size_t)j * w + i]) continue;
+            int oi, oj;
+            switch (k) {
+            case 0: oi = i; oj = j; break;
+            case 1: oi = h - 1 - j; oj = i; break;
+            case 2: oi = w - 1 - i; oj = h - 1 - j; break;
+            default: oi = j; oj = w - 1 - i; break;
+            }
+            out->bits[(size_t)oj * ow + oi] = 1;
+        }
+    return 0;
+}
+
+int footprint_to_spans(const footprint *in, footprint_spans *out)
+{
+    memset(out, 0, sizeof *out);
+    out->w = in->w; out->h = in->h;
+    int n = 0;
+    for (int j = 0; j < in->h; j++) {
+        const unsigned char *row = in->bits + (size_t)j * in->w;
+        for (int i = 0; i < in->w; i++)
+            if (row[i] && (i == 0 || !row[i - 1])) n++;
+    }
+    out->row_first = malloc(sizeof(int) * (size_t)(in->h + 1));
+    out->row_width = malloc(sizeof(int) * (size_t)(in->h > 0 ? in->h : 1));
+    out->x0 = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    out->x1 = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    if (!out->row_first || !out->row_width || !out->x0 || !out->x1) { footprint_spans_free(out); return -1; }
+    n = 0;
+    for (int j = 0; j < in->h; j++) {
+        const unsigned char *row = in->bits + (size_t)j * in->w;
+        out->row_first[j] = n;
+        out->row_width[j] = 0;
+        for (int i = 0; i < in->w;) {
+            if (!row[i]) { i++; continue; }
+            int e = i;
+            while (e + 1 < in->w && row[e + 1]) e++;
+            out->x0[n] = i; out->x1[n] = e; n++;
+            if (e - i + 1 > out->row_width[j]) out->row_width[j] = e - i + 1;
+            i = e + 1;
+        }
+    }
+    out->row_first[in->h] = n;
+    out->count = n;
+    /* Wide rows first: a blocked wide span lets the search jump far. */
+    out->row_order = malloc(sizeof(int) * (size_t)(in->h > 0 ? in->h : 1));
+    if (!out->row_order) { footprint_spans_free(out); return -1; }
+    int maxw = 0;
+    for (int j = 0; j < in->h; j++) if (out->row_width[j] > maxw) maxw = out->row_width[j];
+    int *count = calloc((size_t)maxw + 2, sizeof *count);
+    if (!count) { footprint_spans_free(out); return -1; }
+    for (int j = 0; j < in->h; j++) count[maxw - out->row_width[j] + 1]++;
+    for (int k = 1; k <= maxw + 1; k++) count[k] += count[k - 1];
+    for (int j = 0; j < in->h; j++) out->row_order[count[maxw - out->row_width[j]]++] = j;
+    free(count);
+    return 0;
+}
+
+long footprint_count(const footprint *in)
+{
+    long n = 0;
+    for (size_t i = 0; i < (size_t)in->w * (size_t)in->h; i++) n += in->bits[i];
+    return n;
+}
+
+int footprint_equal(const footprint *a, const footprint *b)
+{
+    return a->w == b->w && a->h == b->h && !memcmp(a->bits, b->bits, (size_t)a->w * (size_t)a->h);
+}
+
+void footprint_spans_free(footprint_spans *s)
+{
+    if (!s) return;
+    free(s->row_first); free(s->row_width); free(s->row_order); free(s->x0); free(s->x1);
+    memset(s, 0, sizeof *s);
+}

@@ -1,0 +1,131 @@
+#include "atlas/occupancy.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static uint64_t *row_of(const occupancy *o, int y) { return o->bits + (size_t)y * o->words; }
+
+static void set_range(uint64_t *row, int lo, int hi)
+{
+    for (int i = lo; i <= hi;) {
+        int w = i >> 6, b = i & 63;
+        int n = hi - i + 1;
+        if (b == 0 && n >= 64) { row[w] = ~(uint64_t)0; i += 64; continue; }
+        int take = 64 - b < n ? 64 - b : n;
+        uint64_t m = (take == 64 ? ~(uint64_t)0 : (((uint64_t)1 << take) - 1)) << b;
+        row[w] |= m;
+        i += take;
+    }
+}
+
+/* Highest taken pixel in [lo, hi] of a row, or -1. */
+static int highest_taken(const uint64_t *row, int lo, int hi)
+{
+    int wlo = lo >> 6, whi = hi >> 6;
+    for (int w = whi; w >= wlo; w--) {
+        uint64_t m = row[w];
+        if (w == whi && (hi & 63) != 63) m &= ((uint64_t)1 << ((hi & 63) + 1)) - 1;
+        if (w == wlo) m &= ~(uint64_t)0 << (lo & 63);
+        if (m) return w * 64 + 63 - __builtin_clzll(m);
+    }
+    return -1;
+}
+
+static int row_free_run(const occupancy *o, int y)
+{
+    const uint64_t *row = row_of(o, y);
+    int best = 0, run = 0;
+    for (int w = 0; w < o->words; w++) {
+        uint64_t m = row[w];
+        int bits = (w == o->words - 1 && (o->size & 63)) ? (o->size & 63) : 64;
+        if (m == 0) { run += bits; if (run > best) best = run; continue; }
+        if (~m == 0) { run = 0; continue; }
+        for (int b = 0; b < bits; b++) {
+            if (m >> b & 1) run = 0;
+            else if (++run > best) best = run;
+        }
+    }
+    return best;
+}
+
+int occupancy_init(occupancy *o, int size, int border)
+{
+    memset(o, 0, sizeof *o);
+    o->size = size;
+    o->words = (size + 63) / 64;
+    o->bits = calloc((size_t)size * o->words, sizeof *o->bits);
+    o->free_run = malloc(sizeof *o->free_run * (size_t)size);
+    if (!o->bits || !o->free_run) { occupancy_free(o); return -1; }
+    for (int y = 0; y < size; y++) {
+        uint64_t *row = row_of(o, y);
+        if (y < border || y >= size - border) set_range(row, 0, size - 1);
+        else if (border > 0) { set_range(row, 0, border - 1); set_range(row, size - border, size - 1); }
+        o->free_run[y] = row_free_run(o, y);
+    }
+    o->first_open = 0;
+    while (o->first_open < size && o->free_run[o->first_open] == 0) o->first_open++;
+    return 0;
+}
+
+void occupancy_free(occupancy *o)
+{
+    free(o->bits); free(o->free_run);
+    memset(o, 0, sizeof *o);
+}
+
+int occupancy_get(const occupancy *o, int x, int y)
+{
+    return (int)(row_of(o, y)[x >> 6] >> (x & 63) & 1);
+}
+
+int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int *ox, int *oy)
+{
+    if (s->w > o->size || s->h > o->size) return 0;
+    int ylast = o->size - s->h;
+    if (y_end - s->h < ylast) ylast = y_end - s->h;
+    for (int y = o->first_open; y <= ylast; y++) {
+        /* Cheap rejection: some footprint row is wider than any free run of its atlas row. */
+        int ok = 1;
+        for (int r = 0; r < s->h; r++)
+            if (s->row_width[r] > o->free_run[y + r]) { ok = 0; break; }
+        if (!ok) continue;
+        int x = 0, xlast = o->size - s->w;
+        while (x <= xlast) {
+            int blocked = -1;
+            for (int t = 0; t < s->h && blocked < 0; t++) {
+                int r = s->row_order[t];
+                const uint64_t *row = row_of(o, y + r);
+                for (int k = s->row_first[r]; k < s->row_first[r + 1]; k++) {
+                    int q = highest_taken(row, x + s->x0[k], x + s->x1[k]);
+                    /* Any x' whose span still covers q collides too: jump past it. */
+                    if (q >= 0) { blocked = q - s->x0[k] + 1; break; }
+                }
+            }
+            if (blocked < 0) { *ox = x; *oy = y; return 1; }
+            x = blocked;
+        }
+    }
+    return 0;
+}
+
+void occupancy_mark(occupancy *o, const footprint *f, int x, int y)
+{
+    for (int j = 0; j < f->h; j++) {
+        int ay = y + j;
+        if (ay < 0 || ay >= o->size) continue;
+        const unsigned char *src = f->bits + (size_t)j * f->w;
+        uint64_t *row = row_of(o, ay);
+        for (int i = 0; i < f->w;) {
+            if (!src[i]) { i++; continue; }
+            int e = i;
+            while (e + 1 < f->w && src[e + 1]) e++;
+            int lo = x + i, hi = x + e;
+            if (lo < 0) lo = 0;
+            if (hi > o->size - 1) hi = o->size - 1;
+            if (lo <= hi) set_range(row, lo, hi);
+            i = e + 1;
+        }
+        o->free_run[ay] = row_free_run(o, ay);
+    }
+    while (o->first_open < o->size && o->free_run[o->first_open] == 0) o->first_open++;
+}

@@ -1,0 +1,116 @@
+/* Sparse Cholesky through CHOLMOD (supernodal, fill-reducing ordering chosen
+ * by CHOLMOD). One cholmod_common per factor keeps factors independent;
+ * solves reuse per-factor workspace, so one factor must not be solved from
+ * two threads at once. */
+#include <stdlib.h>
+#include <string.h>
+#include <cholmod.h>
+
+#include "core/error.h"
+#include "geometry/cholesky.h"
+
+struct cholesky {
+    cholmod_common common;
+    cholmod_factor *factor;
+    cholmod_dense *x, *y, *e; /* cholmod_solve2 workspace, reused across solves */
+    int n;
+};
+
+/* The lower triangle of a (CSR with both triangles) as a CHOLMOD matrix with
+ * stype = -1. Row r of a symmetric CSR is column r, so the CSC arrays are the
+ * CSR arrays restricted to entries with col >= row. */
+static cholmod_sparse *lower_triangle(const sparse_matrix *a, cholmod_common *cc)
+{
+    size_t nnz = 0;
+    for (int r = 0; r < a->rows; r++)
+        for (int p = a->row_start[r]; p < a->row_start[r + 1]; p++)
+            if (a->col[p] >= r) nnz++;
+    cholmod_sparse *s = cholmod_allocate_sparse((size_t)a->rows, (size_t)a->cols, nnz, 1, 1, -1, CHOLMOD_REAL, cc);
+    if (!s) return NULL;
+    int *cp = s->p, *ri = s->i;
+    double *vx = s->x;
+    size_t k = 0;
+    for (int c = 0; c < a->rows; c++) {
+        cp[c] = (int)k;
+        for (int p = a->row_start[c]; p < a->row_start[c + 1]; p++)
+            if (a->col[p] >= c) {
+                ri[k] = a->col[p];
+                vx[k] = a->val[p];
+                k++;
+            }
+    }
+    cp[a->rows] = (int)k;
+    return s;
+}
+
+neuv_status cholesky_factor(const sparse_matrix *a, cholesky **out)
+{
+    *out = NULL;
+    if (a->rows != a->cols || a->rows <= 0)
+        return neuv_fail(NEUV_ERR_INTERNAL, "cholesky: matrix is %d by %d, expected square and non-empty", a->rows, a->cols);
+    cholesky *c = calloc(1, sizeof *c);
+    if (!c) return neuv_fail_nomem("Cholesky factor");
+    c->n = a->rows;
+    cholmod_start(&c->common);
+    c->common.supernodal = CHOLMOD_SUPERNODAL;
+    c->common.print = 0;
+    /* CHOLMOD's default error handler prints to stderr; the library reports through neuv_fail instead. */
+    c->common.error_handler = NULL;
+
+    cholmod_sparse *s = lower_triangle(a, &c->common);
+    if (!s) { cholesky_free(c); return neuv_fail_nomem("Cholesky input matrix"); }
+    c->factor = cholmod_analyze(s, &c->common);
+    if (!c->factor) {
+        cholmod_free_sparse(&s, &c->common);
+        int st = c->common.status;
+        cholesky_free(c);
+        return st == CHOLMOD_OUT_OF_MEMORY ? neuv_fail_nomem("Cholesky analysis")
+                                           : neuv_fail(NEUV_ERR_INTERNAL, "cholesky: analysis failed (CHOLMOD status %d)", st);
+    }
+    int ok = cholmod_factorize(s, c->factor, &c->common);
+    cholmod_free_sparse(&s, &c->common);
+    int st = c->common.status;
+    if (!ok || st == CHOLMOD_OUT_OF_MEMORY) {
+        cholesky_free(c);
+        return st == CHOLMOD_OUT_OF_MEMORY ? neuv_fail_nomem("Cholesky factorization")
+                                           : neuv_fail(NEUV_ERR_INTERNAL, "cholesky: factorization failed (CHOLMOD status %d)", st);
+    }
+    if (st == CHOLMOD_NOT_POSDEF || c->factor->minor < (size_t)c->n) {
+        size_t minor = c->factor->minor;
+        cholesky_free(c);
+        return neuv_fail(NEUV_ERR_INPUT, "matrix is not positive definite (pivot %zu of %d)", minor, a->rows);
+    }
+    *out = c;
+    return NEUV_OK;
+}
+
+neuv_status cholesky_solve(cholesky *c, const double *b, double *x, int nrhs)
+{
+    if (nrhs <= 0) return NEUV_OK;
+    /* Wrap b without copying; CHOLMOD only reads it. */
+    cholmod_dense bd;
+    memset(&bd, 0, sizeof bd);
+    bd.nrow = (size_t)c->n;
+    bd.ncol = (size_t)nrhs;
+    bd.nzmax = (size_t)c->n * (size_t)nrhs;
+    bd.d = (size_t)c->n;
+    bd.x = (void *)b;
+    bd.xtype = CHOLMOD_REAL;
+    bd.dtype = CHOLMOD_DOUBLE;
+    if (!cholmod_solve2(CHOLMOD_A, c->factor, &bd, NULL, &c->x, NULL, &c->y, &c->e, &c->common))
+        return c->common.status == CHOLMOD_OUT_OF_MEMORY ? neuv_fail_nomem("Cholesky solve")
+                                                         : neuv_fail(NEUV_ERR_INTERNAL, "cholesky: solve failed (CHOLMOD status %d)", c->common.status);
+    memcpy(x, c->x->x, (size_t)c->n * (size_t)nrhs * sizeof *x);
+    return NEUV_OK;
+}
+
+void cholesky_free(cholesky *c)
+{
+    if (!c) return;
+    cholmod_free_factor(&c->factor, &c->common);
+    cholmod_free_dense(&c->x, &c->common);
+    cholmod_free_dense(&c->y, &c->common);
+    cholmod_free_dense(&c->e, &c->common);
+    cholmod_finish(&c->common);
+    free(c);
+}

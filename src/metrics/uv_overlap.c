@@ -1,0 +1,178 @@
+#include "metrics/uv_overlap.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+/* Rows per sweep of the difference buffer (32 x 2049 x 4 bytes = 256 KiB). */
+#define RASTER_BAND 32
+
+/* One directed triangle edge A -> B, with what the coverage test needs. */
+typedef struct raster_edge {
+    double px, py, dx, dy; /* origin and direction from the lexicographically smaller endpoint */
+    double sign;           /* +1 when A is that endpoint, -1 otherwise */
+    int top_left;          /* a centre exactly on the edge counts as inside */
+    int grows;             /* the edge function grows with x (keeps the right part of a row) */
+    double slope;          /* dx / dy: where the edge crosses a row, only to start the search */
+} raster_edge;
+
+static void edge_setup(raster_edge *e, double ax, double ay, double bx, double by)
+{
+    /* Evaluating from the same endpoint whatever the direction makes the two
+     * faces of a shared edge see exactly opposite values, so rounding cannot
+     * put a centre near the edge inside both (or neither). */
+    int a_first = ax < bx || (ax == bx && ay < by);
+    e->px = a_first ? ax : bx;
+    e->py = a_first ? ay : by;
+    e->dx = a_first ? bx - ax : ax - bx;
+    e->dy = a_first ? by - ay : ay - by;
+    e->sign = a_first ? 1.0 : -1.0;
+    /* Exactly one of the two directions of any edge qualifies. */
+    e->top_left = by < ay || (by == ay && bx > ax);
+    e->grows = e->sign * e->dy < 0;
+    e->slope = e->dy != 0 ? e->dx / e->dy : 0;
+}
+
+static int edge_inside(const raster_edge *e, double cx, double cy)
+{
+    double w = e->sign * (e->dx * (cy - e->py) - e->dy * (cx - e->px));
+    return w > 0 || (w == 0 && e->top_left);
+}
+
+/* Narrows [*lo, *hi] to the centres of row cy inside edge e. The edge
+ * function as evaluated in floating point is monotone along a row (each
+ * rounding step is), so the inside centres form a half-line: a guess from the
+ * exact crossing, corrected by a step or two of exact tests, finds the same
+ * centres as testing every pixel would. */
+static void edge_clip_span(const raster_edge *e, double cy, int *lo, int *hi)
+{
+    if (e->dy == 0) { /* horizontal: the whole row is in or out */
+        if (!edge_inside(e, *lo + 0.5, cy)) *hi = *lo - 1;
+        return;
+    }
+    /* Column where w = 0, clamped before the cast; truncation is fine as it
+     * only starts the exact search. */
+    double cross = e->px + e->slope * (cy - e->py) - 0.5;
+    if (e->grows) { /* keep the right part */
+        int k = (int)fmax(*lo, fmin(*hi + 1, cross));
+        while (k > *lo && edge_inside(e, k - 0.5, cy)) k--;
+        while (k <= *hi && !edge_inside(e, k + 0.5, cy)) k++;
+        *lo = k;
+    } else { /* keep the left part */
+        int k = (int)fmax(*lo - 1, fmin(*hi, cross));
+        while (k < *hi && edge_inside(e, k + 1.5, cy)) k++;
+        while (k >= *lo && !edge_inside(e, k + 0.5, cy)) k--;
+        *hi = k;
+    }
+}
+
+static double clamp_index(double x, double hi)
+{
+    return x < 0 ? 0 : (x > hi ? hi : x);
+}
+
+neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
+                              const unsigned char *face_mask, int resolution, uv_coverage *out)
+{
+    out->covered = out->overlapped = 0;
+    if (resolution < 1 || resolution > 32768)
+        return neuv_fail(NEUV_ERR_INPUT, "raster resolution %d is outside [1, 32768]", resolution);
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int f = 0; f < nf; f++) {
+        if (face_mask && !face_mask[f]) continue;
+        for (int k = 0; k < 3; k++) {
+            const double *q = uv + 2 * (size_t)tri_uv[3 * (size_t)f + k];
+            for (int d = 0; d < 2; d++) {
+                if (q[d] < lo[d]) lo[d] = q[d];
+                if (q[d] > hi[d]) hi[d] = q[d];
+            }
+        }
+    }
+    double ext_u = hi[0] - lo[0], ext_v = hi[1] - lo[1];
+    double side = ext_u > ext_v ? ext_u : ext_v;
+    if (!(side > 0) || !isfinite(side)) return NEUV_OK; /* nothing drawn, or all on one point */
+    double s = resolution / side;
+    int width = (int)clamp_index(ceil(ext_u * s), resolution);
+    int height = (int)clamp_index(ceil(ext_v * s), resolution);
+    if (width < 1) width = 1;
+    if (height < 1) height = 1;
+    /* Row range of each drawn face (empty when not drawn). */
+    int *rows = malloc(sizeof *rows * 2 * (size_t)(nf > 0 ? nf : 1));
+    /* Coverage is counted through per-row difference arrays: +1 where a
+     * triangle's span starts, -1 after it ends. The cost is the number of rows
+     * a triangle spans, not its pixels, so maps that stack many faces on the
+     * same region (every face on the unit square) stay fast. The raster is
+     * swept in bands of rows small enough to stay in cache. */
+    size_t stride = (size_t)width + 1;
+    int32_t *diff = calloc(stride * RASTER_BAND, sizeof *diff);
+    if (!rows || !diff) { free(rows); free(diff); return neuv_fail_nomem("overlap raster"); }
+    for (int f = 0; f < nf; f++) {
+        rows[2 * f] = 1;
+        rows[2 * f + 1] = 0;
+        if (face_mask && !face_mask[f]) continue;
+        double ymin = INFINITY, ymax = -INFINITY;
+        for (int k = 0; k < 3; k++) {
+            double y = (uv[2 * (size_t)tri_uv[3 * (size_t)f + k] + 1] - lo[1]) * s;
+            ymin = fmin(ymin, y);
+            ymax = fmax(ymax, y);
+        }
+        /* One row of margin: the edge functions alone decide, the box only bounds the work. */
+        rows[2 * f] = (int)clamp_index(floor(ymin - 0.5), height - 1);
+        rows[2 * f + 1] = (int)clamp_index(ceil(ymax - 0.5), height - 1);
+    }
+
+    for (int band = 0; band < height; band += RASTER_BAND) {
+        int band_end = band + RASTER_BAND - 1 < height - 1 ? band + RASTER_BAND - 1 : height - 1;
+        memset(diff, 0, sizeof *diff * stride * RASTER_BAND);
+        for (int f = 0; f < nf; f++) {
+            int j0 = rows[2 * f] > band ? rows[2 * f] : band;
+            int j1 = rows[2 * f + 1] < band_end ? rows[2 * f + 1] : band_end;
+            if (j0 > j1) continue;
+            double x[3], y[3];
+            for (int k = 0; k < 3; k++) {
+                const double *q = uv + 2 * (size_t)tri_uv[3 * (size_t)f + k];
+                x[k] = (q[0] - lo[0]) * s;
+                y[k] = (q[1] - lo[1]) * s;
+            }
+            double area2 = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+            if (area2 == 0) continue; /* covers no centre under the rule anyway */
+            int b = area2 > 0 ? 1 : 2, c = area2 > 0 ? 2 : 1; /* counter-clockwise order 0, b, c */
+            raster_edge e[3];
+            edge_setup(&e[0], x[0], y[0], x[b], y[b]);
+            edge_setup(&e[1], x[b], y[b], x[c], y[c]);
+            edge_setup(&e[2], x[c], y[c], x[0], y[0]);
+            double xmin = fmin(x[0], fmin(x[1], x[2])), xmax = fmax(x[0], fmax(x[1], x[2]));
+            int i0 = (int)clamp_index(floor(xmin - 0.5), width - 1);
+            int i1 = (int)clamp_index(ceil(xmax - 0.5), width - 1);
+            for (int j = j0; j <= j1; j++) {
+                double cy = j + 0.5;
+                int span_lo = i0, span_hi = i1;
+                for (int k = 0; k < 3 && span_lo <= span_hi; k++)
+                    edge_clip_span(&e[k], cy, &span_lo, &span_hi);
+                if (span_lo > span_hi) continue;
+                diff[(size_t)(j - band) * stride + span_lo] += 1;
+                diff[(size_t)(j - band) * stride + span_hi + 1] -= 1;
+            }
+        }
+        for (int j = band; j <= band_end; j++) {
+            const int32_t *row = diff + (size_t)(j - band) * stride;
+            long long depth = 0;
+            for (int i = 0; i < width; i++) {
+                depth += row[i];
+                out->covered += depth >= 1;
+                out->overlapped += depth >= 2;
+            }
+        }
+    }
+    free(rows);
+    free(diff);
+    return NEUV_OK;
+}
+
+double uv_coverage_overlap_fraction(const uv_coverage *c)
+{
+    return c->covered > 0 ? (double)c->overlapped / (double)c->covered : 0.0;
+}

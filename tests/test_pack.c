@@ -1,0 +1,337 @@
+/* Atlas packing: hull and minimum rectangle, then packed charts checked by
+ * an independent raster (pixel centres at 4x the atlas resolution): no two
+ * charts share a sample, samples of different charts are at least `padding`
+ * pixels apart, UVs stay inside [0,1]^2 with the border padding, every
+ * chart's qce is unchanged (a similarity) and the output is deterministic. */
+#include "check.h"
+
+#include <stdint.h>
+
+#include "atlas/convex_hull.h"
+#include "atlas/min_area_rect.h"
+#include "atlas/pack.h"
+#include "atlas/uv_charts.h"
+#include "core/rng.h"
+#include "mesh/clean.h"
+#include "mesh/mesh.h"
+
+/* ---- procedural charts ------------------------------------------------ */
+
+typedef struct builder {
+    double *pos, *uv;
+    int *tri;
+    int nv, nf, cap_v, cap_f;
+} builder;
+
+static int add_vertex(builder *b, double x, double y, double z)
+{
+    if (b->nv == b->cap_v) {
+        b->cap_v = b->cap_v ? 2 * b->cap_v : 256;
+        b->pos = realloc(b->pos, sizeof(double) * 3 * b->cap_v);
+        b->uv = realloc(b->uv, sizeof(double) * 2 * b->cap_v);
+    }
+    b->pos[3 * b->nv] = x; b->pos[3 * b->nv + 1] = y; b->pos[3 * b->nv + 2] = z;
+    return b->nv++;
+}
+
+static void add_face(builder *b, int i, int j, int k)
+{
+    if (b->nf == b->cap_f) {
+        b->cap_f = b->cap_f ? 2 * b->cap_f : 256;
+        b->tri = realloc(b->tri, sizeof(int) * 3 * b->cap_f);
+    }
+    b->tri[3 * b->nf] = i; b->tri[3 * b->nf + 1] = j; b->tri[3 * b->nf + 2] = k;
+    b->nf++;
+}
+
+/* An n by n grid of unit/n cells in the plane z = zc; cells where keep()
+ * says no are left out (L and U shapes are concave). */
+static void add_grid_chart(builder *b, int n, double sx, double sy, double zc, int shape)
+{
+    int base = b->nv;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++) add_vertex(b, sx * i / n, sy * j / n, zc);
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int h = n / 2;
+            if (shape == 1 && i >= h && j >= h) continue;                 /* L */
+            if (shape == 2 && i >= n / 3 && i < n - n / 3 && j >= h) continue; /* U */
+            int a = base + j * (n + 1) + i;
+            add_face(b, a, a + 1, a + n + 2);
+            add_face(b, a, a + n + 2, a + n + 1);
+        }
+}
+
+static void add_annulus_chart(builder *b, int seg, double r0, double r1, double zc)
+{
+    int base = b->nv;
+    for (int s = 0; s < seg; s++) {
+        double t = 6.283185307179586 * s / seg;
+        add_vertex(b, r0 * cos(t), r0 * sin(t), zc);
+        add_vertex(b, r1 * cos(t), r1 * sin(t), zc);
+    }
+    for (int s = 0; s < seg; s++) {
+        int a = base + 2 * s, c = base + 2 * ((s + 1) % seg);
+        add_face(b, a, a + 1, c + 1);
+        add_face(b, a, c + 1, c);
+    }
+}
+
+/* Charts of several shapes at random 3D sizes; UVs are each chart's plane
+ * coordinates under a random rotation, scale, offset and a mild shear, so
+ * qce is not 1 and must survive packing unchanged. */
+static neuv_mesh *procedural_charts(uint64_t seed, int count)
+{
+    builder b = {0};
+    rng r;
+    rng_seed(&r, seed);
+    int *chart_v0 = malloc(sizeof(int) * (count + 1));
+    for (int c = 0; c < count; c++) {
+        chart_v0[c] = b.nv;
+        double size = 0.2 + 2.0 * rng_uniform(&r);
+        int kind = c % 4;
+        if (kind == 3) add_annulus_chart(&b, 24, 0.5 * size, size, c);
+        else add_grid_chart(&b, 6, size, size * (0.3 + rng_uniform(&r)), c, kind);
+    }
+    chart_v0[count] = b.nv;
+    for (int c = 0; c < count; c++) {
+        double ang = 6.283185307179586 * rng_uniform(&r), sc = 0.1 + 5 * rng_uniform(&r);
+        double shear = 0.3 * rng_uniform(&r), ox = 10 * rng_normal(&r), oy = 10 * rng_normal(&r);
+        for (int v = chart_v0[c]; v < chart_v0[c + 1]; v++) {
+            double x = b.pos[3 * v] + shear * b.pos[3 * v + 1], y = b.pos[3 * v + 1];
+            b.uv[2 * v] = sc * (cos(ang) * x - sin(ang) * y) + ox;
+            b.uv[2 * v + 1] = sc * (sin(ang) * x + cos(ang) * y) + oy;
+        }
+    }
+    neuv_mesh *m = mesh_create(b.nv, b.nf, b.nv);
+    memcpy(m->pos, b.pos, sizeof(double) * 3 * b.nv);
+    memcpy(m->tri, b.tri, sizeof(int) * 3 * b.nf);
+    memcpy(m->uv, b.uv, sizeof(double) * 2 * b.nv);
+    memcpy(m->tri_uv, b.tri, sizeof(int) * 3 * b.nf);
+    free(b.pos); free(b.uv); free(b.tri); free(chart_v0);
+    return m;
+}
+
+/* ---- independent checks ---------------------------------------------- */
+
+/* Quasi-conformal error s1/s2 of face f (SPEC.md section 5), 0 if degenerate. */
+static double face_qce(const neuv_mesh *m, int f)
+{
+    const double *p0 = m->pos + 3 * m->tri[3 * f], *p1 = m->pos + 3 * m->tri[3 * f + 1],
+                 *p2 = m->pos + 3 * m->tri[3 * f + 2];
+    double e1[3], e2[3];
+    for (int d = 0; d < 3; d++) { e1[d] = p1[d] - p0[d]; e2[d] = p2[d] - p0[d]; }
+    double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    if (l1 == 0) return 0;
+    double x2 = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1;
+    double y2sq = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2] - x2 * x2;
+    double y2 = y2sq > 0 ? sqrt(y2sq) : 0;
+    if (y2 == 0) return 0;
+    const double *u0 = m->uv + 2 * m->tri_uv[3 * f], *u1 = m->uv + 2 * m->tri_uv[3 * f + 1],
+                 *u2 = m->uv + 2 * m->tri_uv[3 * f + 2];
+    /* J maps the flattened triangle (0,0),(l1,0),(x2,y2) to the UV triangle. */
+    double a = (u1[0] - u0[0]) / l1, c = (u1[1] - u0[1]) / l1;
+    double b = ((u2[0] - u0[0]) - a * x2) / y2, d = ((u2[1] - u0[1]) - c * x2) / y2;
+    double fro = a * a + b * b + c * c + d * d, det = fabs(a * d - b * c);
+    double disc = sqrt(fmax(fro * fro - 4 * det * det, 0));
+    double s1 = sqrt(0.5 * (fro + disc)), s2 = sqrt(fmax(0.5 * (fro - disc), 0));
+    return s2 > 0 ? s1 / s2 : 0;
+}
+
+static void chart_qce(const neuv_mesh *m, const int *fc, int nc, double *q)
+{
+    double *w = calloc(nc, sizeof *w);
+    for (int c = 0; c < nc; c++) q[c] = 0;
+    for (int f = 0; f < m->nf; f++) {
+        double a = mesh_face_area(m, f);
+        q[fc[f]] += a * face_qce(m, f);
+        w[fc[f]] += a;
+    }
+    for (int c = 0; c < nc; c++) q[c] = w[c] > 0 ? q[c] / w[c] : 0;
+    free(w);
+}
+
+/* Rasterizes every face at pixel centres of an S by S grid into a chart id
+ * image, counting samples claimed by two different charts; then checks that
+ * samples of different charts are at least pad_sub sub-pixels apart. Sample
+ * centres lie inside the charts, so their distance bounds the charts'
+ * distance from above: no slack is needed. */
+static void check_layout(const neuv_mesh *m, const int *fc, int S, double pad_sub,
+                         long *overlaps, long *too_close)
+{
+    int32_t *img = malloc(sizeof *img * (size_t)S * S);
+    for (size_t i = 0; i < (size_t)S * S; i++) img[i] = -1;
+    *overlaps = 0; *too_close = 0;
+    for (int f = 0; f < m->nf; f++) {
+        double p[3][2];
+        for (int k = 0; k < 3; k++)
+            for (int d = 0; d < 2; d++) p[k][d] = m->uv[2 * m->tri_uv[3 * f + k] + d] * S;
+        double area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+        if (area == 0) continue;
+        double sgn = area > 0 ? 1 : -1;
+        int x0 = (int)floor(fmin(p[0][0], fmin(p[1][0], p[2][0]))), x1 = (int)ceil(fmax(p[0][0], fmax(p[1][0], p[2][0])));
+        int y0 = (int)floor(fmin(p[0][1], fmin(p[1][1], p[2][1]))), y1 = (int)ceil(fmax(p[0][1], fmax(p[1][1], p[2][1])));
+        if (x0 < 0) x0 = 0;
+        if (y0 < 0) y0 = 0;
+        if (x1 > S - 1) x1 = S - 1;
+        if (y1 > S - 1) y1 = S - 1;
+        for (int y = y0; y <= y1; y++)
+            for (int x = x0; x <= x1; x++) {
+                double cx = x + 0.5, cy = y + 0.5, in = 1;
+                for (int k = 0; k < 3 && in; k++) {
+                    const double *a = p[k], *b = p[(k + 1) % 3];
+                    double e = (b[0] - a[0]) * (cy - a[1]) - (b[1] - a[1]) * (cx - a[0]);
+                    if (sgn * e < 0) in = 0;
+                }
+                if (!in) continue;
+                int32_t *px = &img[(size_t)y * S + x];
+                if (*px >= 0 && *px != fc[f]) (*overlaps)++;
+                *px = fc[f];
+            }
+    }
+    int rad = (int)ceil(pad_sub);
+    for (int y = 0; y < S; y++)
+        for (int x = 0; x < S; x++) {
+            int32_t c = img[(size_t)y * S + x];
+            if (c < 0) continue;
+            /* Only boundary samples can be closest to another chart. */
+            int interior = x > 0 && y > 0 && x < S - 1 && y < S - 1 && img[(size_t)y * S + x - 1] == c &&
+                           img[(size_t)y * S + x + 1] == c && img[(size_t)(y - 1) * S + x] == c &&
+                           img[(size_t)(y + 1) * S + x] == c;
+            if (interior) continue;
+            for (int dy = -rad; dy <= rad; dy++)
+                for (int dx = -rad; dx <= rad; dx++) {
+                    int xx = x + dx, yy = y + dy;
+                    if (xx < 0 || yy < 0 || xx >= S || yy >= S) continue;
+                    if ((double)dx * dx + (double)dy * dy >= pad_sub * pad_sub) continue;
+                    int32_t o = img[(size_t)yy * S + xx];
+                    if (o >= 0 && o != c) (*too_close)++;
+                }
+        }
+    free(img);
+}
+
+/* Everything the packer promises, on one mesh. */
+static void check_pack(const char *name, neuv_mesh *m, int resolution, int padding, double min_eff)
+{
+    int *fc = malloc(sizeof(int) * m->nf);
+    int nc = uv_charts(m, fc);
+    CHECK(nc > 0);
+    double *q0 = malloc(sizeof(double) * nc), *q1 = malloc(sizeof(double) * nc);
+    chart_qce(m, fc, nc, q0);
+    neuv_mesh *orig = mesh_clone(m);
+    atlas_pack_options o;
+    atlas_pack_options_default(&o);
+    o.resolution = resolution;
+    o.padding = padding;
+    atlas_chart_transform *xf = malloc(sizeof *xf * nc);
+    atlas_pack_result res;
+    CHECK_INT(atlas_pack(m, fc, nc, &o, xf, &res), NEUV_OK);
+    printf("%s: %d charts, efficiency %.3f, %d attempts\n", name, nc, res.efficiency, res.attempts);
+    CHECK(res.efficiency >= min_eff);
+
+    /* Inside the square, border padding kept. */
+    double lo = 1, hi = 0;
+    for (int u = 0; u < m->nuv; u++)
+        for (int d = 0; d < 2; d++) { lo = fmin(lo, m->uv[2 * u + d]); hi = fmax(hi, m->uv[2 * u + d]); }
+    CHECK(lo >= (double)padding / resolution - 1e-9);
+    CHECK(hi <= 1 - (double)padding / resolution + 1e-9);
+
+    /* Charts unchanged (same faces together), qce unchanged per chart. */
+    int *fc2 = malloc(sizeof(int) * m->nf);
+    CHECK_INT(uv_charts(m, fc2), nc);
+    chart_qce(m, fc, nc, q1);
+    double worst = 0;
+    for (int c = 0; c < nc; c++) worst = fmax(worst, fabs(q1[c] - q0[c]));
+    CHECK(worst <= 1e-6);
+
+    /* The stored transform reproduces the UVs from the original ones. */
+    double err = 0;
+    for (int f = 0; f < m->nf; f++)
+        for (int k = 0; k < 3; k++) {
+            double out[2];
+            atlas_chart_transform_apply(&xf[fc[f]], orig->uv + 2 * orig->tri_uv[3 * f + k], out);
+            const double *nu = m->uv + 2 * m->tri_uv[3 * f + k];
+            err = fmax(err, fmax(fabs(out[0] - nu[0]), fabs(out[1] - nu[1])));
+        }
+    CHECK(err <= 1e-9);
+
+    long overlaps, close;
+    check_layout(m, fc, 4 * resolution, 4.0 * padding, &overlaps, &close);
+    CHECK_INT(overlaps, 0);
+    CHECK_INT(close, 0);
+
+    /* Deterministic: the same input packs to the same bits. */
+    neuv_mesh *again = mesh_clone(orig);
+    CHECK_INT(atlas_pack(again, fc, nc, &o, NULL, NULL), NEUV_OK);
+    CHECK_INT(again->nuv, m->nuv);
+    CHECK(again->nuv == m->nuv && !memcmp(again->uv, m->uv, sizeof(double) * 2 * m->nuv));
+    mesh_free(again);
+    mesh_free(orig);
+    free(fc); free(fc2); free(q0); free(q1); free(xf);
+}
+
+static void test_hull_and_rect(void)
+{
+    /* A 3 by 1 rectangle turned by 0.3 rad, with interior points. */
+    double p[2 * 8];
+    double base[8][2] = {{0, 0}, {3, 0}, {3, 1}, {0, 1}, {1, 0.5}, {2, 0.2}, {1.5, 0.9}, {3, 0.5}};
+    double a = 0.3;
+    for (int i = 0; i < 8; i++) {
+        p[2 * i] = cos(a) * base[i][0] - sin(a) * base[i][1] + 5;
+        p[2 * i + 1] = sin(a) * base[i][0] + cos(a) * base[i][1] - 2;
+    }
+    int hull[8];
+    CHECK_INT(convex_hull_2d(p, 8, hull), 4);
+    double ang, w, h;
+    CHECK_INT(min_area_rect(p, 8, &ang, &w, &h), 0);
+    CHECK_NEAR(w * h, 3.0, 1e-9);
+    /* Turning back by -0.3 (mod a quarter turn) makes it axis-aligned. */
+    CHECK_NEAR(fmod(ang + a, 1.5707963267948966), 0.0, 1e-9);
+    double one[2] = {1, 2};
+    CHECK_INT(convex_hull_2d(one, 1, hull), 1);
+    CHECK_INT(min_area_rect(one, 1, &ang, &w, &h), 0);
+    CHECK_NEAR(w + h, 0.0, 0);
+}
+
+static void test_bad_input(void)
+{
+    neuv_mesh *m = procedural_charts(1, 2);
+    int *fc = malloc(sizeof(int) * m->nf);
+    int nc = uv_charts(m, fc);
+    atlas_pack_options o;
+    atlas_pack_options_default(&o);
+    o.padding = 600;
+    CHECK_INT(atlas_pack(m, fc, nc, &o, NULL, NULL), NEUV_ERR_INPUT);
+    atlas_pack_options_default(&o);
+    fc[0] = nc;
+    CHECK_INT(atlas_pack(m, fc, nc, &o, NULL, NULL), NEUV_ERR_INPUT);
+    fc[0] = 0;
+    m->uv[0] = NAN;
+    CHECK_INT(atlas_pack(m, fc, nc, &o, NULL, NULL), NEUV_ERR_INPUT);
+    free(fc);
+    mesh_free(m);
+}
+
+int main(void)
+{
+    test_hull_and_rect();
+    test_bad_input();
+    neuv_mesh *m = procedural_charts(42, 24);
+    check_pack("procedural 24 charts, 256 px pad 2", m, 256, 2, 0.40);
+    mesh_free(m);
+    m = procedural_charts(7, 60);
+    check_pack("procedural 60 charts, 512 px pad 0", m, 512, 0, 0.55);
+    mesh_free(m);
+
+    const char *path = shared_path("uv-samples/spot-xatlas.obj");
+    neuv_mesh *s = NULL;
+    if (path && neuv_mesh_load(path, &s) == NEUV_OK) {
+        CHECK(mesh_weld_positions(s) >= 0);
+        check_pack("spot-xatlas, 512 px pad 2", s, 512, 2, 0.60);
+        mesh_free(s);
+    } else {
+        printf("uv-samples absent: real-mesh case skipped\n");
+    }
+    return check_report("test_pack");
+}
