@@ -78,6 +78,23 @@ int occupancy_get(const occupancy *o, int x, int y)
     return (int)(row_of(o, y)[x >> 6] >> (x & 63) & 1);
 }
 
+/* Moves *x right to the first position >= *x where every span of footprint
+ * row r lands on free pixels of atlas row `row` (past xlast when none).
+ * Returns 1 when x moved. */
+static int row_next_fit(const uint64_t *row, const footprint_spans *s, int r, int *x, int xlast)
+{
+    int moved = 0;
+    for (int k = s->row_first[r]; k < s->row_first[r + 1] && *x <= xlast;) {
+        int q = highest_taken(row, *x + s->x0[k], *x + s->x1[k]);
+        if (q < 0) { k++; continue; }
+        /* Any x whose span still covers q collides too: jump past it and recheck the row. */
+        *x = q - s->x0[k] + 1;
+        moved = 1;
+        k = s->row_first[r];
+    }
+    return moved;
+}
+
 int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int *ox, int *oy)
 {
     if (s->w > o->size || s->h > o->size) return 0;
@@ -90,20 +107,16 @@ int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int 
             if (s->row_width[r] > o->free_run[y + r]) { ok = 0; break; }
         if (!ok) continue;
         int x = 0, xlast = o->size - s->w;
-        while (x <= xlast) {
-            int blocked = -1;
-            for (int t = 0; t < s->h && blocked < 0; t++) {
-                int r = s->row_order[t];
-                const uint64_t *row = row_of(o, y + r);
-                for (int k = s->row_first[r]; k < s->row_first[r + 1]; k++) {
-                    int q = highest_taken(row, x + s->x0[k], x + s->x1[k]);
-                    /* Any x' whose span still covers q collides too: jump past it. */
-                    if (q >= 0) { blocked = q - s->x0[k] + 1; break; }
-                }
-            }
-            if (blocked < 0) { *ox = x; *oy = y; return 1; }
-            x = blocked;
+        /* Leapfrog over the rows (widest first, cyclically): each row moves x
+         * to its own next fit; x is a place when h rows in a row agree. */
+        int agreed = 0, t = 0;
+        while (x <= xlast && agreed < s->h) {
+            int r = s->row_order[t];
+            int moved = row_next_fit(row_of(o, y + r), s, r, &x, xlast);
+            agreed = moved ? 1 : agreed + 1;
+            t = (t + 1) % s->h;
         }
+        if (x <= xlast && agreed >= s->h) { *ox = x; *oy = y; return 1; }
     }
     return 0;
 }

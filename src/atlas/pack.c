@@ -62,10 +62,12 @@ static double tri_area_2d(const double *a, const double *b, const double *c)
 enum { order_rect_area, order_perimeter, order_short_side };
 enum { choose_lowest_top, choose_lowest_bottom };
 typedef struct pack_heuristic { int order, choose; } pack_heuristic;
-static const pack_heuristic heuristics[3] = {
+#define PACK_HEURISTICS 4
+static const pack_heuristic heuristics[PACK_HEURISTICS] = {
     {order_perimeter, choose_lowest_bottom},
     {order_short_side, choose_lowest_top},
     {order_rect_area, choose_lowest_bottom},
+    {order_rect_area, choose_lowest_top},
 };
 
 typedef struct chart_order { double key; int id; } chart_order;
@@ -375,7 +377,10 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     for (;;) {
         double frac = 0;
         int rc = 0;
-        for (int h = 0; h < 3 && rc == 0; h++) {
+        /* With thousands of charts the time goes to placements, and small
+         * charts fill the gaps whatever the order: one heuristic is enough. */
+        int nh = ncharts > 1000 ? 1 : PACK_HEURISTICS;
+        for (int h = 0; h < nh && rc == 0; h++) {
             double fh;
             rc = pack_attempt(&P, &heuristics[h], g, pl, &fh);
             attempts++;
