@@ -42,7 +42,8 @@ fi
 # ---- malformed checkpoints: exit 2, one line `neuv: error: FILE: ...` ---------
 GOOD="$CORPUS/valid_mlp"
 size=$(wc -c < "$GOOD")
-head -c $((size - 5)) "$GOOD" > "$D/truncated.neuv"
+head -c $((size - 3)) "$GOOD" > "$D/truncated.neuv"
+head -c $((size - 6)) "$GOOD" > "$D/truncated2.neuv"
 head -c 10 "$GOOD" > "$D/short.neuv"
 : > "$D/empty.neuv"
 cp "$GOOD" "$D/crc.neuv"
@@ -63,7 +64,8 @@ check() { # FILE EXPECTED_MESSAGE_FRAGMENT
     grep -q -- "$2" "$D/err" && ok || bad "$1: expected '$2' in: $(cat "$D/err")"
     [ ! -s "$D/out" ] && ok || bad "$1: wrote to stdout"
 }
-check "$D/truncated.neuv" "truncated checkpoint: tensor 'mlp.1.b' needs 4 bytes, 3 left"
+check "$D/truncated.neuv" "truncated checkpoint: tensor 'mlp.1.b' needs 4 bytes, 1 left"
+check "$D/truncated2.neuv" "truncated checkpoint: tensor 'mlp.1.b' shape and CRC need 12 bytes, 10 left"
 check "$D/short.neuv" "truncated checkpoint"
 check "$D/empty.neuv" "truncated checkpoint"
 check "$D/crc.neuv" "CRC mismatch in tensor 'mlp.1.b'"

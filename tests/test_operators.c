@@ -273,6 +273,56 @@ static void test_two_components(void)
     mesh_free(a); mesh_free(b); mesh_free(m);
 }
 
+/* Six disjoint spheres of different radii (one large enough for ARPACK):
+ * six zero eigenvalues, then l = 1 of the largest sphere. */
+static void test_many_components(void)
+{
+    const double radius[6] = {1.0, 0.5, 0.4, 0.3, 0.25, 0.2};
+    neuv_mesh *part[6];
+    int nv = 0, nf = 0;
+    for (int c = 0; c < 6; c++) {
+        part[c] = shape_icosphere(c == 0 ? 3 : 1, radius[c]);
+        nv += part[c]->nv;
+        nf += part[c]->nf;
+    }
+    neuv_mesh *m = mesh_create(nv, nf, 0);
+    int v0 = 0, f0 = 0;
+    for (int c = 0; c < 6; c++) {
+        for (int v = 0; v < part[c]->nv; v++)
+            for (int d = 0; d < 3; d++) m->pos[3 * (v0 + v) + d] = part[c]->pos[3 * v + d] + (d == 0 ? 3.0 * c : 0.0);
+        for (int i = 0; i < 3 * part[c]->nf; i++) m->tri[3 * f0 + i] = part[c]->tri[i] + v0;
+        v0 += part[c]->nv;
+        f0 += part[c]->nf;
+    }
+    operators o;
+    operators_params p = {16, 4};
+    CHECK_INT(operators_compute(m, &p, &o), NEUV_OK);
+    for (int i = 0; i < 6; i++) CHECK(fabs(o.evals[i]) < 1e-8);
+    for (int i = 6; i < 9; i++) CHECK(fabs(o.evals[i] - 2.0) < 0.05);
+    CHECK(o.evals[9] > 5.0);
+    CHECK(max_m_orth_error(&o) <= 1e-8);
+    CHECK(max_eigen_residual(&o) <= 1e-8);
+    /* Each null vector is constant on one sphere and zero elsewhere. */
+    for (int a = 0; a < 6; a++) {
+        int nonzero_parts = 0;
+        v0 = 0;
+        for (int c = 0; c < 6; c++) {
+            double lo = INFINITY, hi = -INFINITY;
+            for (int v = v0; v < v0 + part[c]->nv; v++) {
+                lo = fmin(lo, o.evecs[(size_t)v * o.k + a]);
+                hi = fmax(hi, o.evecs[(size_t)v * o.k + a]);
+            }
+            CHECK(hi - lo < 1e-8);
+            if (fabs(hi) > 1e-8) nonzero_parts++;
+            v0 += part[c]->nv;
+        }
+        CHECK_INT(nonzero_parts, 1);
+    }
+    operators_free(&o);
+    for (int c = 0; c < 6; c++) mesh_free(part[c]);
+    mesh_free(m);
+}
+
 /* Tiny meshes: k is clamped to #V and the dense path gives all eigenpairs. */
 static void test_tiny(void)
 {
@@ -293,7 +343,7 @@ static void test_tiny(void)
     CHECK(max_eigen_residual(&o) <= 1e-10);
     operators_free(&o);
 
-    /* A mid-size mesh (dense path, 642 vertices > threshold? no: level 2 = 162). */
+    /* k larger than the ARPACK path allows for 162 vertices: dense, all 64 computed. */
     neuv_mesh *s = shape_icosphere(2, 1.0);
     operators_params p = {64, 8};
     CHECK_INT(operators_compute(s, &p, &o), NEUV_OK);
@@ -373,6 +423,7 @@ int main(void)
     test_tiny();
     test_gradient_linear();
     test_two_components();
+    test_many_components();
     test_sphere();
     return check_report("test_operators");
 }

@@ -72,6 +72,51 @@ int neuv_mesh_vertex_count(const neuv_mesh *mesh);
 int neuv_mesh_face_count(const neuv_mesh *mesh);
 int neuv_mesh_has_uv(const neuv_mesh *mesh);
 
+/* ---- unwrapping -------------------------------------------------------- */
+
+typedef enum neuv_method {
+    NEUV_METHOD_NEURAL = 0,  /* the paper's parameterization networks (default) */
+    NEUV_METHOD_LSCM = 1,    /* least squares conformal maps, same charts */
+    NEUV_METHOD_HARMONIC = 2 /* cotangent harmonic map, boundary on a circle, same charts */
+} neuv_method;
+
+typedef enum neuv_preset {
+    NEUV_PRESET_FAST = 0,  /* smallest networks that reach the quality bar on a CPU */
+    NEUV_PRESET_PAPER = 1  /* the paper's configuration */
+} neuv_preset;
+
+typedef struct neuv_unwrap_options {
+    neuv_method method;
+    neuv_preset preset;
+    int charts;              /* 0: automatic; K: exactly K patches before disk cutting */
+    double max_distortion;   /* auto charts: split until every chart's LSCM qce_mean is below (1.15) */
+    int iters;               /* 0: preset default; otherwise training iterations per network */
+    unsigned long long seed; /* every random choice derives from it (default 1) */
+    int threads;             /* 0: library default */
+    int resolution;          /* atlas side in pixels (1024) */
+    int padding;             /* pixels between charts and to the border (2) */
+    int allow_overlaps;      /* 1: skip the repair of folded charts */
+    int use_cache;           /* 1: operators through the on-disk cache (default) */
+} neuv_unwrap_options;
+
+void neuv_unwrap_options_default(neuv_unwrap_options *o);
+
+/* The outcome of one unwrap: the cleaned mesh with its packed UVs, the
+ * charts, per-stage seconds, every repair, and the metrics. */
+typedef struct neuv_unwrap_result neuv_unwrap_result;
+
+/* Cleans a copy of `mesh` (the input is not modified), computes operators,
+ * charts, the parameterization, repairs, and packs the atlas. */
+neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, neuv_unwrap_result **out);
+/* The unwrapped mesh (owned by the result). */
+const neuv_mesh *neuv_unwrap_mesh(const neuv_unwrap_result *r);
+int neuv_unwrap_chart_count(const neuv_unwrap_result *r);
+/* The JSON report of SPEC.md section 4 (caller frees). load_seconds and
+ * export_seconds are the caller's own stages, added to the report. */
+char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_name,
+                              double load_seconds, double export_seconds);
+void neuv_unwrap_result_free(neuv_unwrap_result *r);
+
 #ifdef __cplusplus
 }
 #endif

@@ -14,12 +14,12 @@ typedef struct command {
 static const command commands[] = {
     /* Each command adds one line here, in the order of SPEC.md section 3. */
     {"eval", cmd_eval, "eval IN_WITH_UV [--json] [--preview PREFIX] [--preview-color chart|qce|area]"},
-    {"operators", cmd_operators, "operators IN [--k K] [--hks N] [--json] [--no-cache]"},
-    {"convert", cmd_convert, "convert IN -o OUT   (format by extension: .obj .ply .glb .gltf; UVs kept)"},
+    {"pack", cmd_pack, "pack IN_WITH_UV -o OUT [--resolution PX] [--padding PX] [--keep-scale] [--preview PREFIX]   repack the charts of any UV map"},
     {"info", cmd_info, "info IN [--json]   vertices, faces, components, boundaries, genus, repairs"},
     {"flatten", cmd_flatten, "flatten IN --method lscm|harmonic -o OUT   classic flattening of a single disk"},
+    {"operators", cmd_operators, "operators IN [--k K] [--hks N] [--json] [--no-cache]"},
     {"geodesics", cmd_geodesics, "geodesics IN --from V [--json]   heat-method distances from one vertex"},
-    {"pack", cmd_pack, "pack IN_WITH_UV -o OUT [--resolution PX] [--padding PX] [--keep-scale] [--preview PREFIX]   repack the charts of any UV map"},
+    {"convert", cmd_convert, "convert IN -o OUT   (format by extension: .obj .ply .glb .gltf; UVs kept)"},
     {"inspect", cmd_inspect, "inspect M.neuv [--json]   a checkpoint's configuration and tensors"},
     {NULL, NULL, NULL},
 };

@@ -9,6 +9,7 @@
 #include "core/log.h"
 #include "core/rng.h"
 #include "core/timer.h"
+#include "core/union_find.h"
 #include "geometry/cholesky.h"
 #include "geometry/eigenbasis.h"
 
@@ -139,12 +140,14 @@ static neuv_status eigen_arpack(const sparse_matrix *L, const double *mass, int 
     rng g;
     rng_seed(&g, START_VECTOR_SEED);
     for (int i = 0; i < n; i++) resid[i] = rng_uniform(&g) - 0.5;
+    if (getenv("NEUV_EXP_SEED")) { rng_seed(&g, (uint64_t)atoll(getenv("NEUV_EXP_SEED"))); for (int i = 0; i < n; i++) resid[i] = rng_uniform(&g) - 0.5; }
+    if (getenv("NEUV_EXP_ONES")) for (int i = 0; i < n; i++) resid[i] = 1.0;
 
     int iparam[11] = {0}, ipntr[14] = {0};
     iparam[0] = 1;                    /* exact shifts */
     iparam[2] = ARPACK_MAX_RESTARTS;
     iparam[6] = 3;                    /* shift-invert mode */
-    int ido = 0, ainfo = 1;
+    int ido = 0, ainfo = getenv("NEUV_EXP_ARPACKRAND") ? 0 : 1;
     double tol = 0.0;                 /* machine precision, as SciPy's eigsh default */
     for (;;) {
         dsaupd_c(&ido, "G", n, "LM", k, tol, resid, ncv, v, n, iparam, ipntr, workd, workl, lworkl, &ainfo);
@@ -201,12 +204,132 @@ static void sort_ascending(int k, const double *evals, int *order)
     }
 }
 
+/* Eigenpairs of one connected problem, unsorted: evals k, z #N by k column-major. */
+static neuv_status eigen_connected(const sparse_matrix *L, const double *mass, int k, double *evals, double *z,
+                                   eigenbasis_info *info)
+{
+    int n = L->rows;
+    if (n <= DENSE_MAX_VERTICES || k >= n - 1) {
+        double t0 = now_seconds();
+        neuv_status s = eigen_dense(L, mass, k, evals, z);
+        info->solve_seconds += now_seconds() - t0;
+        return s;
+    }
+    info->dense = 0;
+    eigenbasis_info one;
+    memset(&one, 0, sizeof one);
+    neuv_status s = eigen_arpack(L, mass, k, evals, z, &one);
+    /* The shift reported is the one of the largest component (solved first). */
+    if (info->sigma == 0) info->sigma = one.sigma;
+    info->restarts += one.restarts;
+    info->op_applies += one.op_applies;
+    info->factor_seconds += one.factor_seconds;
+    info->solve_seconds += one.solve_seconds;
+    info->op_seconds += one.op_seconds;
+    return s;
+}
+
+/* One candidate eigenpair of one component, for the global selection. */
+typedef struct candidate {
+    double lambda;
+    int comp, index;
+} candidate;
+
+static int candidate_cmp(const void *a, const void *b)
+{
+    const candidate *x = a, *y = b;
+    if (x->lambda != y->lambda) return x->lambda < y->lambda ? -1 : 1;
+    if (x->comp != y->comp) return x->comp < y->comp ? -1 : 1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
+/* Several components: L is block diagonal, so its eigenpairs are the union
+ * of each block's. Solving each block separately is exact, where a single
+ * Lanczos run on the whole would have to find a zero eigenvalue of
+ * multiplicity #components from one start vector (in exact arithmetic it
+ * finds one). Outputs evals k ascending and z #V by k column-major. */
+static neuv_status eigen_components(const sparse_matrix *L, const double *mass, int k, int ncomp, const int *label,
+                                    double *evals, double *z, eigenbasis_info *info)
+{
+    int n = L->rows;
+    neuv_status s = NEUV_OK;
+    int *count = calloc((size_t)ncomp, sizeof *count), *local = malloc((size_t)n * sizeof *local);
+    int *order = malloc((size_t)ncomp * sizeof *order), *kc = calloc((size_t)ncomp, sizeof *kc);
+    int **verts = calloc((size_t)ncomp, sizeof *verts);
+    double **cev = calloc((size_t)ncomp, sizeof *cev), **cz = calloc((size_t)ncomp, sizeof *cz);
+    candidate *cand = NULL;
+    if (!count || !local || !order || !kc || !verts || !cev || !cz) { s = neuv_fail_nomem("eigen components"); goto done; }
+    for (int i = 0; i < n; i++) local[i] = count[label[i]]++;
+    for (int c = 0; c < ncomp; c++) {
+        verts[c] = malloc((size_t)count[c] * sizeof **verts);
+        if (!verts[c]) { s = neuv_fail_nomem("eigen components"); goto done; }
+    }
+    for (int i = 0; i < n; i++) verts[label[i]][local[i]] = i;
+    /* Largest component first (ties by label), so the reported shift is its own. */
+    for (int c = 0; c < ncomp; c++) order[c] = c;
+    for (int a = 1; a < ncomp; a++) {
+        int x = order[a], b = a - 1;
+        while (b >= 0 && count[order[b]] < count[x]) { order[b + 1] = order[b]; b--; }
+        order[b + 1] = x;
+    }
+    size_t ncand = 0;
+    for (int q = 0; q < ncomp && !s; q++) {
+        int c = order[q], nc = count[c];
+        kc[c] = k < nc ? k : nc;
+        triplet_list t;
+        if ((s = triplets_init(&t, nc, nc, (size_t)nc * 7))) break;
+        for (int a = 0; a < nc && !s; a++) {
+            int r = verts[c][a];
+            for (int p = L->row_start[r]; p < L->row_start[r + 1] && !s; p++)
+                s = triplets_add(&t, a, local[L->col[p]], L->val[p]);
+        }
+        sparse_matrix sub;
+        memset(&sub, 0, sizeof sub);
+        double *smass = malloc((size_t)nc * sizeof *smass);
+        cev[c] = malloc((size_t)kc[c] * sizeof **cev);
+        cz[c] = malloc((size_t)nc * kc[c] * sizeof **cz);
+        if (!s && (!smass || !cev[c] || !cz[c])) s = neuv_fail_nomem("eigen components");
+        if (!s) s = sparse_from_triplets(&t, &sub);
+        triplets_free(&t);
+        if (!s) {
+            for (int a = 0; a < nc; a++) smass[a] = mass[verts[c][a]];
+            s = eigen_connected(&sub, smass, kc[c], cev[c], cz[c], info);
+        }
+        sparse_free(&sub);
+        free(smass);
+        ncand += (size_t)kc[c];
+    }
+    if (s) goto done;
+    cand = malloc(ncand * sizeof *cand);
+    if (!cand) { s = neuv_fail_nomem("eigen components"); goto done; }
+    size_t e = 0;
+    for (int c = 0; c < ncomp; c++)
+        for (int j = 0; j < kc[c]; j++) cand[e++] = (candidate){cev[c][j], c, j};
+    qsort(cand, ncand, sizeof *cand, candidate_cmp);
+    memset(z, 0, (size_t)n * k * sizeof *z);
+    for (int a = 0; a < k; a++) {
+        int c = cand[a].comp, j = cand[a].index;
+        evals[a] = cand[a].lambda;
+        for (int v = 0; v < count[c]; v++) z[(size_t)a * n + verts[c][v]] = cz[c][(size_t)j * count[c] + v];
+    }
+done:
+    if (verts)
+        for (int c = 0; c < ncomp; c++) free(verts[c]);
+    if (cev)
+        for (int c = 0; c < ncomp; c++) free(cev[c]);
+    if (cz)
+        for (int c = 0; c < ncomp; c++) free(cz[c]);
+    free(count); free(local); free(order); free(kc); free(verts); free(cev); free(cz); free(cand);
+    return s;
+}
+
 neuv_status eigenbasis(const sparse_matrix *L, const double *mass, int k,
                        double *evals, double *evecs, eigenbasis_info *info)
 {
     eigenbasis_info local;
     if (!info) info = &local;
     memset(info, 0, sizeof *info);
+    info->dense = 1;
     int n = L->rows;
     if (n <= 0 || L->cols != n) return neuv_fail(NEUV_ERR_INPUT, "eigenbasis: Laplacian is %d by %d", L->rows, L->cols);
     if (k < 1 || k > n) return neuv_fail(NEUV_ERR_INPUT, "eigenbasis: asked for %d eigenpairs of a %d-vertex mesh", k, n);
@@ -214,20 +337,23 @@ neuv_status eigenbasis(const sparse_matrix *L, const double *mass, int k,
         if (!(mass[i] > 0) || !isfinite(mass[i]))
             return neuv_fail(NEUV_ERR_INPUT, "vertex %d has zero area (no non-degenerate face uses it)", i);
 
+    /* Connected components of L's sparsity pattern. */
+    union_find uf;
+    int *label = malloc((size_t)n * sizeof *label);
+    if (!label || uf_init(&uf, n) != 0) { free(label); return neuv_fail_nomem("eigen components"); }
+    for (int r = 0; r < n; r++)
+        for (int p = L->row_start[r]; p < L->row_start[r + 1]; p++) uf_union(&uf, r, L->col[p]);
+    info->components = uf_labels(&uf, label);
+    uf_free(&uf);
+
     double *z = malloc((size_t)n * k * sizeof *z);
     double *ev = malloc((size_t)k * sizeof *ev);
     int *order = malloc((size_t)k * sizeof *order);
-    if (!z || !ev || !order) { free(z); free(ev); free(order); return neuv_fail_nomem("eigenvectors"); }
+    if (!z || !ev || !order) { free(label); free(z); free(ev); free(order); return neuv_fail_nomem("eigenvectors"); }
 
-    neuv_status s;
-    if (n <= DENSE_MAX_VERTICES || k >= n - 1) {
-        info->dense = 1;
-        double t0 = now_seconds();
-        s = eigen_dense(L, mass, k, ev, z);
-        info->solve_seconds = now_seconds() - t0;
-    } else {
-        s = eigen_arpack(L, mass, k, ev, z, info);
-    }
+    neuv_status s = info->components == 1 ? eigen_connected(L, mass, k, ev, z, info)
+                                          : eigen_components(L, mass, k, info->components, label, ev, z, info);
+    free(label);
     if (s) { free(z); free(ev); free(order); return s; }
 
     sort_ascending(k, ev, order);

@@ -8,6 +8,12 @@
  * Small problems (#V ≤ 400, or k ≥ #V − 1) use dense LAPACK dsyev on
  * M^-1/2 L M^-1/2 instead, which gives every eigenpair exactly.
  *
+ * A Laplacian with several connected components is block diagonal: each
+ * component is solved on its own (a single Lanczos run would have to find a
+ * zero eigenvalue of multiplicity #components from one start vector) and
+ * the k smallest over all components are kept, each eigenvector zero
+ * outside its component.
+ *
  * Results are sorted ascending, M-orthonormal (checked, re-orthonormalized
  * when the error exceeds 1e-10), each eigenvector signed so that its entry
  * of largest magnitude is positive, and deterministic: the Lanczos start
@@ -19,7 +25,8 @@
 
 typedef struct eigenbasis_info {
     double sigma;           /* shift used (0 for the dense path) */
-    int dense;              /* 1 when the dense LAPACK path was used */
+    int dense;              /* 1 when the dense LAPACK path was used (for every component) */
+    int components;         /* connected components of L, each solved on its own */
     int restarts;           /* ARPACK restart iterations */
     int op_applies;         /* solves with the factor */
     double orth_error;      /* max |Φᵀ M Φ − I| after the final check */

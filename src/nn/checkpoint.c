@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -187,8 +188,12 @@ static neuv_status parse(reader *r, nn_checkpoint *out)
         name[nlen] = '\0';
         r->p += nlen;
         r->left -= nlen;
-        if (!read_u32(r, &rows) || !read_u32(r, &cols) || !read_u32(r, &dcrc))
-            return truncated("tensor shape", 12, r->left);
+        if (r->left < 12)
+            return neuv_fail(NEUV_ERR_INPUT, "truncated checkpoint: tensor '%s' shape and CRC need 12 bytes, %zu left",
+                             name, r->left);
+        read_u32(r, &rows);
+        read_u32(r, &cols);
+        read_u32(r, &dcrc);
         if (rows == 0 || cols == 0 || rows > INT32_MAX || cols > INT32_MAX || (uint64_t)rows * cols > INT32_MAX)
             return neuv_fail(NEUV_ERR_INPUT, "tensor '%s': shape %u by %u is not usable", name, rows, cols);
         uint64_t bytes = (uint64_t)rows * cols * 4;
@@ -241,12 +246,12 @@ neuv_status nn_checkpoint_load(const char *path, nn_checkpoint *out)
     memset(out, 0, sizeof *out);
     FILE *fp = fopen(path, "rb");
     if (!fp) return neuv_fail(NEUV_ERR_IO, "cannot open: %s", strerror(errno));
-    long size = -1;
-    if (fseek(fp, 0, SEEK_END) == 0) size = ftell(fp);
-    if (size < 0 || fseek(fp, 0, SEEK_SET) != 0) {
+    struct stat info;
+    if (fstat(fileno(fp), &info) != 0 || !S_ISREG(info.st_mode)) {
         fclose(fp);
-        return neuv_fail(NEUV_ERR_IO, "cannot read (not a regular file?)");
+        return neuv_fail(NEUV_ERR_IO, "cannot read: not a regular file");
     }
+    long size = (long)info.st_size;
     unsigned char *buf = malloc(size ? (size_t)size : 1);
     if (!buf) { fclose(fp); return neuv_fail_nomem("checkpoint file"); }
     size_t got = fread(buf, 1, (size_t)size, fp);

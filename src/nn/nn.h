@@ -36,6 +36,11 @@
  * so a whole forward pass can be written without checks and tested once with
  * nn_ctx_status() or nn_backward(). No op prints, asserts on input or exits.
  *
+ * Gradients of inputs: set `x->requires_grad = 1` on a leaf before using it and
+ * nn_backward leaves dL/dx in x->grad (arena memory). After backward, the grad of
+ * an intermediate may share storage with another's (add passes its buffer on),
+ * so read only leaf and parameter grads.
+ *
  * Ops evaluate eagerly (the forward value is ready when the op returns) and
  * record themselves on the ctx tape; nn_backward walks the tape backwards.
  * Broadcasting: the second operand of add/sub/mul/div may be the same shape,

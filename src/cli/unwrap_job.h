@@ -1,0 +1,21 @@
+/* The part of `neuv unwrap` that `neuv demo` shares: run the pipeline on a
+ * loaded mesh and write the outputs (mesh, report, pictures). */
+#ifndef NEUV_CLI_UNWRAP_JOB_H
+#define NEUV_CLI_UNWRAP_JOB_H
+
+#include "neuv/neuv.h"
+
+typedef struct unwrap_job {
+    const char *input_name;   /* for messages and the report */
+    const char *output;       /* mesh path (.obj/.ply/.glb/.gltf) */
+    const char *report;       /* JSON path or NULL */
+    const char *preview;      /* picture prefix or NULL */
+    int preview_color;        /* preview_color value */
+    double load_seconds;
+} unwrap_job;
+
+/* Runs neuv_unwrap and writes everything; prints a summary unless quiet.
+ * Returns the process exit code. */
+int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const unwrap_job *job);
+
+#endif

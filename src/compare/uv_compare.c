@@ -1,0 +1,176 @@
+#include "compare/uv_compare.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "atlas/uv_charts.h"
+#include "core/error.h"
+#include "mesh/edge_map.h"
+#include "spatial/bvh.h"
+#include "spatial/triangle_closest_point.h"
+
+/* Barycentric weights below this count as zero: the point is on an edge
+ * or a vertex of the face, shared with its neighbours. */
+#define ON_EDGE 1e-9
+
+static int cmp_double(const void *x, const void *y)
+{
+    double a = *(const double *)x, b = *(const double *)y;
+    return a < b ? -1 : a > b;
+}
+
+static double uv_dist_in_face(const neuv_mesh *a, int f, const double w[3], const double uv[2])
+{
+    double s = 0;
+    for (int i = 0; i < 2; i++) {
+        double x = 0;
+        for (int k = 0; k < 3; k++) x += w[k] * a->uv[2 * (size_t)a->tri_uv[3 * f + k] + i];
+        s += (x - uv[i]) * (x - uv[i]);
+    }
+    return sqrt(s);
+}
+
+/* Smallest UV distance among the A faces holding the closest point found
+ * in face f with weights w (see the header on seams). */
+static double uv_distance_at(const neuv_mesh *a, const int *vf_start, const int *vf, int f, const double w[3],
+                             const double p[3], double d2, const double uv[2])
+{
+    double best = uv_dist_in_face(a, f, w, uv);
+    int on = 0, keep[3], nk = 0;
+    for (int k = 0; k < 3; k++) {
+        if (w[k] < ON_EDGE) on = 1;
+        else keep[nk++] = a->tri[3 * f + k];
+    }
+    if (!on || nk == 0) return best;
+    /* Candidates: faces around the first kept vertex that hold all kept vertices. */
+    for (int j = vf_start[keep[0]]; j < vf_start[keep[0] + 1]; j++) {
+        int g = vf[j];
+        if (g == f) continue;
+        int all = 1;
+        for (int i = 1; i < nk; i++) {
+            int has = 0;
+            for (int k = 0; k < 3; k++) has |= a->tri[3 * g + k] == keep[i];
+            all &= has;
+        }
+        if (!all) continue;
+        const int *t = a->tri + 3 * (size_t)g;
+        double wg[3];
+        double dg = triangle_closest_point(a->pos + 3 * (size_t)t[0], a->pos + 3 * (size_t)t[1], a->pos + 3 * (size_t)t[2], p, wg);
+        if (dg > d2 + 1e-12 * (1 + d2)) continue;
+        double d = uv_dist_in_face(a, g, wg, uv);
+        if (d < best) best = d;
+    }
+    return best;
+}
+
+neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result *res)
+{
+    memset(res, 0, sizeof *res);
+    if (a->nf <= 0 || b->nf <= 0) return neuv_fail(NEUV_ERR_INPUT, "both meshes need faces to compare UVs");
+    if (a->nuv <= 0 || !a->tri_uv) return neuv_fail(NEUV_ERR_INPUT, "the first mesh has no UVs");
+    if (b->nuv <= 0 || !b->tri_uv) return neuv_fail(NEUV_ERR_INPUT, "the second mesh has no UVs");
+    size_t ncb = (size_t)b->nf * 3;
+    neuv_status st = NEUV_OK;
+    bvh tree;
+    memset(&tree, 0, sizeof tree);
+    edge_map wedges, pairs;
+    int wedges_ok = edge_map_init(&wedges, ncb) == 0;
+    int pairs_ok = edge_map_init(&pairs, (size_t)b->nf / 4 + 16) == 0;
+    int *wv = malloc(sizeof(int) * ncb), *wu = malloc(sizeof(int) * ncb);
+    int *vf_start = calloc((size_t)a->nv + 1, sizeof(int)), *vf = malloc(sizeof(int) * 3 * (size_t)a->nf);
+    int *chart_a = malloc(sizeof(int) * (size_t)a->nf), *chart_b = malloc(sizeof(int) * (size_t)b->nf);
+    double *pts = malloc(sizeof(double) * 3 * (ncb > (size_t)b->nf ? ncb : (size_t)b->nf));
+    double *bary = malloc(sizeof(double) * 3 * ncb), *d2 = malloc(sizeof(double) * ncb), *dist = NULL;
+    int *face = malloc(sizeof(int) * ncb);
+    double *pair_area = NULL, *best_area = NULL;
+    int *best_a = NULL;
+    if (!wedges_ok || !pairs_ok || !wv || !wu || !vf_start || !vf || !chart_a || !chart_b || !pts || !bary || !d2 || !face)
+        goto nomem;
+    if ((st = bvh_build(&tree, a))) goto done;
+    for (size_t c = 0; c < (size_t)a->nf * 3; c++) vf_start[a->tri[c] + 1]++;
+    for (int v = 0; v < a->nv; v++) vf_start[v + 1] += vf_start[v];
+    for (size_t c = 0; c < (size_t)a->nf * 3; c++) vf[vf_start[a->tri[c]]++] = (int)(c / 3);
+    for (int v = a->nv; v > 0; v--) vf_start[v] = vf_start[v - 1];
+    vf_start[0] = 0;
+
+    /* UV distance at every distinct (vertex, UV) corner of B. */
+    int nw = 0;
+    for (size_t c = 0; c < ncb; c++) {
+        int inserted;
+        if (!edge_map_slot(&wedges, b->tri[c], b->tri_uv[c], nw, &inserted)) goto nomem;
+        if (inserted) { wv[nw] = b->tri[c]; wu[nw] = b->tri_uv[c]; nw++; }
+    }
+    for (int w = 0; w < nw; w++) memcpy(pts + 3 * (size_t)w, b->pos + 3 * (size_t)wv[w], sizeof(double) * 3);
+    bvh_closest_points(&tree, nw, pts, face, bary, d2);
+    dist = malloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
+    if (!dist) goto nomem;
+    double sum = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : sum)
+    for (int w = 0; w < nw; w++) {
+        dist[w] = uv_distance_at(a, vf_start, vf, face[w], bary + 3 * (size_t)w, pts + 3 * (size_t)w, d2[w],
+                                 b->uv + 2 * (size_t)wu[w]);
+        sum += dist[w];
+    }
+    for (int w = 0; w < nw; w++) res->max_surface_distance = fmax(res->max_surface_distance, sqrt(d2[w]));
+    qsort(dist, (size_t)nw, sizeof(double), cmp_double);
+    res->vertices_compared = nw;
+    res->uv_mean = sum / nw;
+    res->uv_max = dist[nw - 1];
+    /* p95 by linear interpolation between order statistics. */
+    double rank = 0.95 * (nw - 1);
+    int lo = (int)floor(rank);
+    res->uv_p95 = lo + 1 < nw ? dist[lo] + (rank - lo) * (dist[lo + 1] - dist[lo]) : dist[lo];
+
+    /* Chart agreement. */
+    int nca = uv_charts(a, chart_a), ncbch = uv_charts(b, chart_b);
+    if (nca < 0 || ncbch < 0) goto nomem;
+    res->charts_a = nca; res->charts_b = ncbch;
+    for (int f = 0; f < b->nf; f++) {
+        const int *t = b->tri + 3 * (size_t)f;
+        for (int i = 0; i < 3; i++)
+            pts[3 * (size_t)f + i] = (b->pos[3 * (size_t)t[0] + i] + b->pos[3 * (size_t)t[1] + i] + b->pos[3 * (size_t)t[2] + i]) / 3;
+    }
+    bvh_closest_points(&tree, b->nf, pts, face, NULL, NULL);
+    /* Area of B chart cb under A chart ca, one slot per pair met. */
+    pair_area = malloc(sizeof(double) * (size_t)b->nf);
+    best_area = calloc((size_t)ncbch, sizeof(double));
+    best_a = malloc(sizeof(int) * (size_t)ncbch);
+    if (!pair_area || !best_area || !best_a) goto nomem;
+    int npairs = 0;
+    double total = 0;
+    for (int f = 0; f < b->nf; f++) {
+        int inserted;
+        int *slot = edge_map_slot(&pairs, chart_b[f], chart_a[face[f]], npairs, &inserted);
+        if (!slot) goto nomem;
+        if (inserted) pair_area[npairs++] = 0;
+        double ar = mesh_face_area(b, f);
+        pair_area[*slot] += ar;
+        total += ar;
+    }
+    for (int c = 0; c < ncbch; c++) { best_a[c] = -1; best_area[c] = -1; }
+    /* Ties go to the smaller A chart id: a fixed rule, whatever the hash order. */
+    for (int f = 0; f < b->nf; f++) {
+        int cb = chart_b[f], ca = chart_a[face[f]];
+        double ar = pair_area[edge_map_get(&pairs, cb, ca)];
+        if (ar > best_area[cb] || (ar == best_area[cb] && ca < best_a[cb])) { best_area[cb] = ar; best_a[cb] = ca; }
+    }
+    double agree_area = 0;
+    int agree_faces = 0;
+    for (int f = 0; f < b->nf; f++)
+        if (chart_a[face[f]] == best_a[chart_b[f]]) { agree_area += mesh_face_area(b, f); agree_faces++; }
+    res->chart_agreement = total > 0 ? agree_area / total : (double)agree_faces / b->nf;
+    res->chart_agreement_faces = (double)agree_faces / b->nf;
+    res->faces_a = a->nf;
+    res->faces_b = b->nf;
+    goto done;
+nomem:
+    st = neuv_fail(NEUV_ERR_NOMEM, "out of memory comparing UV maps");
+done:
+    if (wedges_ok) edge_map_free(&wedges);
+    if (pairs_ok) edge_map_free(&pairs);
+    free(wv); free(wu); free(vf_start); free(vf); free(chart_a); free(chart_b); free(pts);
+    free(bary); free(d2); free(dist); free(face); free(pair_area); free(best_area); free(best_a);
+    bvh_free(&tree);
+    return st;
+}

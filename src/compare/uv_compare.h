@@ -1,0 +1,37 @@
+/* UV consistency of two UV maps of the same surface (possibly two
+ * different triangulations of it): how far B's UVs are from A's UVs at the
+ * same points of the surface, and how well their charts agree. */
+#ifndef NEUV_COMPARE_UV_COMPARE_H
+#define NEUV_COMPARE_UV_COMPARE_H
+
+#include "mesh/mesh.h"
+
+typedef struct uv_compare_result {
+    double uv_mean, uv_p95, uv_max; /* UV distance in atlas units (UV coordinates) */
+    double chart_agreement;         /* headline: share of B's surface AREA whose chart agrees */
+    double chart_agreement_faces;   /* the same share counted in faces */
+    int faces_a, faces_b;
+    int charts_a, charts_b;
+    int vertices_compared;          /* distinct (vertex, UV) corners of B */
+    double max_surface_distance;    /* largest distance from a compared B vertex to A's surface */
+} uv_compare_result;
+
+/* Compares B's UV map against A's.
+ * UV distance: for every distinct (vertex, UV) corner of B, the closest
+ * point of A's surface (BVH), A's per-corner UVs interpolated there with
+ * the barycentric weights of the face found, and the Euclidean distance to
+ * B's UV. Where the closest point lies on an edge or vertex of A, every A
+ * face touching it is a candidate and the nearest UV value counts: on A's
+ * seams the UV is multi-valued and B's corner belongs to one side.
+ * Chart agreement: charts are uv_charts of each mesh. Each B face's
+ * centroid is located on A (closest point) to get the A chart under it;
+ * each B chart is matched to the A chart holding most of its area; a B
+ * face agrees when the A chart under its centroid is its chart's match.
+ * The headline share is by area (a few tiny faces along chart borders do
+ * not dominate it); the share by face count is reported too.
+ * Inputs: a, b meshes with UVs.
+ * Outputs: *res.
+ * Returns NEUV_OK, NEUV_ERR_INPUT (a mesh without faces or UVs), NEUV_ERR_NOMEM. */
+neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result *res);
+
+#endif

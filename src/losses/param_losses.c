@@ -1,0 +1,98 @@
+/* Parameterization losses (Pokhariya et al. 2022, section 3.2) on the nn tape. */
+#include "losses/param_losses.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "core/error.h"
+
+neuv_status param_corners_build(const int *tri, int nf, param_corners *c)
+{
+    c->nf = nf;
+    size_t n = (size_t)3 * (size_t)(nf > 0 ? nf : 1);
+    c->p0 = malloc(n * sizeof(int));
+    c->p1 = malloc(n * sizeof(int));
+    c->p2 = malloc(n * sizeof(int));
+    if (!c->p0 || !c->p1 || !c->p2) {
+        param_corners_free(c);
+        return neuv_fail(NEUV_ERR_NOMEM, "out of memory for %d triangle corners", nf);
+    }
+    for (int k = 0; k < 3; k++)
+        for (int f = 0; f < nf; f++) {
+            int r = k * nf + f;
+            c->p0[r] = tri[3 * f + k];
+            c->p1[r] = tri[3 * f + (k + 1) % 3];
+            c->p2[r] = tri[3 * f + (k + 2) % 3];
+        }
+    return NEUV_OK;
+}
+
+void param_corners_free(param_corners *c)
+{
+    free(c->p0); free(c->p1); free(c->p2);
+    c->p0 = c->p1 = c->p2 = NULL;
+    c->nf = 0;
+}
+
+void param_corner_targets(const double *pos, const param_corners *c, float *cos3d, float *area3d)
+{
+    int nf = c->nf;
+    for (int r = 0; r < 3 * nf; r++) {
+        const double *a = pos + 3 * c->p0[r], *b = pos + 3 * c->p1[r], *d = pos + 3 * c->p2[r];
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++) { e1[k] = b[k] - a[k]; e2[k] = d[k] - a[k]; }
+        double dot = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2];
+        double n1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+        double n2 = sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
+        cos3d[r] = n1 > 0 && n2 > 0 ? (float)(dot / (n1 * n2)) : 1.0f;
+        if (r < nf) {
+            double x = e1[1] * e2[2] - e1[2] * e2[1];
+            double y = e1[2] * e2[0] - e1[0] * e2[2];
+            double z = e1[0] * e2[1] - e1[1] * e2[0];
+            area3d[r] = (float)(0.5 * sqrt(x * x + y * y + z * z));
+        }
+    }
+}
+
+nn_tensor *param_loss_cycle(nn_ctx *ctx, nn_tensor *x, nn_tensor *x_rec)
+{
+    nn_tensor *d2 = nn_sum(ctx, nn_square(ctx, nn_sub(ctx, x_rec, x)), NN_COLS);
+    return nn_mean(ctx, d2, NN_ALL);
+}
+
+nn_tensor *param_loss_iso(nn_ctx *ctx, nn_tensor *uv, const int *pi, const int *pj, nn_tensor *g, int np)
+{
+    nn_tensor *d = nn_sub(ctx, nn_gather_rows(ctx, uv, pi, np), nn_gather_rows(ctx, uv, pj, np));
+    /* eps keeps the norm differentiable when two UVs coincide (1e-12 in squared units). */
+    nn_tensor *len = nn_row_norm(ctx, d, 1e-12f);
+    return nn_mean(ctx, nn_square(ctx, nn_sub(ctx, len, g)), NN_ALL);
+}
+
+nn_tensor *param_loss_angle(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, nn_tensor *cos3d)
+{
+    int n = 3 * c->nf;
+    nn_tensor *a = nn_gather_rows(ctx, uv, c->p0, n);
+    nn_tensor *e1 = nn_sub(ctx, nn_gather_rows(ctx, uv, c->p1, n), a);
+    nn_tensor *e2 = nn_sub(ctx, nn_gather_rows(ctx, uv, c->p2, n), a);
+    nn_tensor *cosuv = nn_row_cosine(ctx, e1, e2, 1e-12f);
+    /* mean over the 3|F| corners = 1/|F| Σ_f 1/3 Σ_i */
+    return nn_mean(ctx, nn_square(ctx, nn_sub(ctx, cosuv, cos3d)), NN_ALL);
+}
+
+nn_tensor *param_face_area_uv(nn_ctx *ctx, nn_tensor *uv, const param_corners *c)
+{
+    int nf = c->nf;
+    nn_tensor *a = nn_gather_rows(ctx, uv, c->p0, nf);
+    nn_tensor *e1 = nn_sub(ctx, nn_gather_rows(ctx, uv, c->p1, nf), a);
+    nn_tensor *e2 = nn_sub(ctx, nn_gather_rows(ctx, uv, c->p2, nf), a);
+    nn_tensor *cross = nn_sub(ctx, nn_mul(ctx, nn_slice_cols(ctx, e1, 0, 1), nn_slice_cols(ctx, e2, 1, 1)),
+                              nn_mul(ctx, nn_slice_cols(ctx, e1, 1, 1), nn_slice_cols(ctx, e2, 0, 1)));
+    return nn_scale(ctx, cross, 0.5f);
+}
+
+nn_tensor *param_loss_area(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, nn_tensor *area3d,
+                           nn_tensor *orient)
+{
+    nn_tensor *auv = nn_mul(ctx, param_face_area_uv(ctx, uv, c), orient);
+    return nn_mean(ctx, nn_square(ctx, nn_sub(ctx, auv, area3d)), NN_ALL);
+}

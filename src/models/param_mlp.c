@@ -1,0 +1,71 @@
+/* Conditioned MLP of the parameterization networks (see param_mlp.h). */
+#include "models/param_mlp.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "core/error.h"
+#include "core/rng.h"
+
+neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, int depth, float slope,
+                             struct rng *r, nn_params *params, const char *prefix)
+{
+    *m = (param_mlp){0};
+    if (in < 1 || psi < 0 || width < 1 || out < 1 || depth < 1)
+        return neuv_fail(NEUV_ERR_INPUT, "bad MLP shape (in %d, psi %d, width %d, out %d, depth %d)", in,
+                         psi, width, out, depth);
+    m->in = in; m->psi = psi; m->width = width; m->out = out; m->depth = depth;
+    m->slope = slope > 0 ? slope : 0.01f;
+    int w0 = depth > 1 ? width : out;
+    char name[128];
+    snprintf(name, sizeof name, "%s.0.wx", prefix);
+    m->w_x = nn_params_add(params, in, w0, name);
+    if (psi > 0) {
+        snprintf(name, sizeof name, "%s.0.wpsi", prefix);
+        m->w_psi = nn_params_add(params, psi, w0, name);
+    }
+    snprintf(name, sizeof name, "%s.0.b", prefix);
+    m->b0 = nn_params_add(params, 1, w0, name);
+    if (!m->w_x || !m->b0 || (psi > 0 && !m->w_psi)) return NEUV_ERR_NOMEM;
+    /* One bound for both blocks: they are one layer of fan-in in + psi. */
+    int fan_in = in + psi;
+    double bound = depth > 1 ? sqrt(6.0 / fan_in) : sqrt(6.0 / (fan_in + out));
+    for (long i = 0; i < (long)in * w0; i++) m->w_x->data[i] = (float)((2 * rng_uniform(r) - 1) * bound);
+    for (long i = 0; psi > 0 && i < (long)psi * w0; i++)
+        m->w_psi->data[i] = (float)((2 * rng_uniform(r) - 1) * bound);
+    if (depth > 1) {
+        m->rest = calloc((size_t)(depth - 1), sizeof *m->rest);
+        if (!m->rest) return neuv_fail_nomem("MLP layers");
+        for (int l = 1; l < depth; l++) {
+            int last = l == depth - 1;
+            snprintf(name, sizeof name, "%s.%d", prefix, l);
+            neuv_status s = nn_linear_create(&m->rest[l - 1], width, last ? out : width,
+                                             last ? NN_ACT_TANH : NN_ACT_LEAKY_RELU, r, params, name);
+            if (s != NEUV_OK) return s;
+        }
+    }
+    return NEUV_OK;
+}
+
+void param_mlp_free(param_mlp *m)
+{
+    free(m->rest);
+    m->rest = NULL;
+}
+
+nn_tensor *param_mlp_forward(nn_ctx *ctx, const param_mlp *m, nn_tensor *x, nn_tensor *psi,
+                             const int *psi_row)
+{
+    nn_tensor *h = nn_add(ctx, nn_matmul(ctx, x, m->w_x), m->b0);
+    if (m->psi > 0) {
+        nn_tensor *p = nn_matmul(ctx, psi, m->w_psi);
+        if (psi_row && x) p = nn_gather_rows(ctx, p, psi_row, x->rows);
+        h = nn_add(ctx, h, p);
+    }
+    for (int l = 1; l < m->depth; l++) {
+        h = nn_leaky_relu(ctx, h, m->slope);
+        h = nn_linear_forward(ctx, &m->rest[l - 1], h);
+    }
+    return nn_tanh(ctx, h);
+}

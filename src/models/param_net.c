@@ -1,0 +1,562 @@
+/* Training of the parameterization networks on all charts of a shape
+ * (Pokhariya et al. 2022, section 3.2). See param_net.h for the choices. */
+#include "models/param_net.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "charts/charts.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "core/rng.h"
+#include "core/timer.h"
+#include "geometry/heat_geodesics.h"
+#include "losses/param_losses.h"
+#include "nn/adam.h"
+
+void param_net_default_options(param_net_options *o, param_preset preset)
+{
+    *o = (param_net_options){0};
+    o->width = 64;
+    o->depth = 4;
+    o->leaky_slope = 0.01f;
+    o->lr = 1e-3f;
+    o->lambda[0] = 1; o->lambda[1] = 1; o->lambda[2] = 0.001; o->lambda[3] = 0.001;
+    o->sigma = 0.2;
+    o->radius = 0.6;
+    o->iters = 1500;
+    o->min_iters = 300;
+    o->plateau_window = 100;
+    o->plateau_tol = 0.005;
+    o->face_points = 1024;
+    o->iso_pairs = 4096;
+    o->psi_mode = PARAM_PSI_POOLED;
+    o->seed = 1;
+    if (preset == PARAM_PRESET_PAPER) {
+        o->width = 464;
+        o->depth = 8;
+        o->iters = 2000;
+    }
+}
+
+/* Everything training needs, all charts concatenated: chart vertices are
+ * numbered 0..nv-1 over the charts in order (a mesh vertex on a seam appears
+ * once per chart holding it). Positions are normalized per chart. */
+typedef struct train_data {
+    int n_charts;
+    int nv, nf;
+    int *vmesh;        /* nv: mesh vertex */
+    int *vchart;       /* nv: chart */
+    float *x;          /* nv by 3, normalized */
+    int *tri;          /* nf by 3, chart-vertex indices */
+    int *fmesh;        /* nf: mesh face */
+    int *fchart;       /* nf */
+    double *fcum;      /* nf: cumulative normalized area (face sampling) */
+    param_corners corners;
+    float *cos3d, *area3d;
+    geodesic_pairs pairs;   /* chart-vertex indices, normalized distances */
+    float *feat;       /* nv by psi_dim per-vertex ψ (per-vertex mode) */
+    float *psi;        /* n_charts by psi_dim (pooled mode) */
+    int psi_dim;
+    double *center, *scale;
+} train_data;
+
+static void train_data_free(train_data *d)
+{
+    free(d->vmesh); free(d->vchart); free(d->x); free(d->tri); free(d->fmesh); free(d->fchart);
+    free(d->fcum); param_corners_free(&d->corners); free(d->cos3d); free(d->area3d);
+    geodesic_pairs_free(&d->pairs); free(d->feat); free(d->psi); free(d->center); free(d->scale);
+    memset(d, 0, sizeof *d);
+}
+
+static neuv_status pairs_append(geodesic_pairs *p, int i, int j, double dist)
+{
+    if (p->n == p->cap) {
+        size_t cap = p->cap ? 2 * p->cap : 1024;
+        int *ni = realloc(p->i, cap * sizeof(int));
+        if (ni) p->i = ni;
+        int *nj = realloc(p->j, cap * sizeof(int));
+        if (nj) p->j = nj;
+        double *nd = realloc(p->d, cap * sizeof(double));
+        if (nd) p->d = nd;
+        if (!ni || !nj || !nd) return neuv_fail_nomem("geodesic pairs");
+        p->cap = cap;
+    }
+    p->i[p->n] = i; p->j[p->n] = j; p->d[p->n] = dist;
+    p->n++;
+    return NEUV_OK;
+}
+
+/* Vertex normals (area-weighted face normals), for the feature-free ψ. */
+static neuv_status vertex_normals(const neuv_mesh *m, double **out)
+{
+    double *n = calloc((size_t)m->nv * 3, sizeof(double));
+    if (!n) return neuv_fail_nomem("vertex normals");
+    for (int f = 0; f < m->nf; f++) {
+        double fn[3], a = mesh_face_area(m, f);
+        mesh_face_normal(m, f, fn);
+        for (int k = 0; k < 3; k++)
+            for (int c = 0; c < 3; c++) n[3 * m->tri[3 * f + k] + c] += a * fn[c];
+    }
+    for (int v = 0; v < m->nv; v++) {
+        double *p = n + 3 * v, l = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        if (l > 0) for (int c = 0; c < 3; c++) p[c] /= l;
+    }
+    *out = n;
+    return NEUV_OK;
+}
+
+/* One chart: normalization, geodesic pairs, and its rows of the concatenated arrays. */
+static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, const param_net_options *o,
+                             train_data *d, int *nv_used, int *nf_used)
+{
+    neuv_mesh *sub = NULL;
+    int *vmap = NULL, *fmap = NULL;
+    heat_geodesics *hg = NULL;
+    double *dist = NULL;
+    geodesic_pairs pp = {0};
+    neuv_status s = chart_submesh(m, face_chart, c, &sub, &vmap, &fmap);
+    if (s != NEUV_OK) return neuv_fail(NEUV_ERR_INPUT, "chart %d has no face", c);
+    double cen[3] = {0, 0, 0}, atot = 0;
+    for (int f = 0; f < sub->nf; f++) {
+        double a = mesh_face_area(sub, f);
+        for (int k = 0; k < 3; k++)
+            for (int q = 0; q < 3; q++) cen[q] += a * sub->pos[3 * sub->tri[3 * f + k] + q] / 3;
+        atot += a;
+    }
+    if (!(atot > 0)) { s = neuv_fail(NEUV_ERR_INPUT, "chart %d has zero area", c); goto done; }
+    for (int q = 0; q < 3; q++) cen[q] /= atot;
+    int v0 = 0;
+    double best = INFINITY, rmax = 0;
+    for (int v = 0; v < sub->nv; v++) {
+        const double *p = sub->pos + 3 * v;
+        double r2 = (p[0] - cen[0]) * (p[0] - cen[0]) + (p[1] - cen[1]) * (p[1] - cen[1]) +
+                    (p[2] - cen[2]) * (p[2] - cen[2]);
+        if (r2 < best) { best = r2; v0 = v; }
+        if (r2 > rmax) rmax = r2;
+    }
+    rmax = sqrt(rmax);
+    dist = malloc((size_t)sub->nv * sizeof(double));
+    if (!dist) { s = neuv_fail_nomem("chart distances"); goto done; }
+    s = heat_geodesics_create(sub, 1.0, &hg);
+    if (s != NEUV_OK) goto done;
+    s = heat_geodesics_from_vertex(hg, v0, dist);
+    if (s != NEUV_OK) goto done;
+    double rgeo = 0;
+    for (int v = 0; v < sub->nv; v++)
+        if (isfinite(dist[v]) && dist[v] > rgeo) rgeo = dist[v];
+    /* The heat method can fall short on a tiny chart; never below the Euclidean radius. */
+    if (rgeo < rmax) rgeo = rmax;
+    double scale = o->radius / rgeo;
+    d->center[3 * c] = cen[0]; d->center[3 * c + 1] = cen[1]; d->center[3 * c + 2] = cen[2];
+    d->scale[c] = scale;
+    s = heat_geodesics_pairs_within(hg, o->sigma / scale, NULL, 0, &pp);
+    if (s != NEUV_OK) goto done;
+    int vb = *nv_used, fb = *nf_used;
+    for (size_t k = 0; k < pp.n; k++) {
+        s = pairs_append(&d->pairs, vb + pp.i[k], vb + pp.j[k], pp.d[k] * scale);
+        if (s != NEUV_OK) goto done;
+    }
+    for (int v = 0; v < sub->nv; v++) {
+        d->vmesh[vb + v] = vmap[v];
+        d->vchart[vb + v] = c;
+        for (int q = 0; q < 3; q++) d->x[3 * (vb + v) + q] = (float)((sub->pos[3 * v + q] - cen[q]) * scale);
+    }
+    for (int f = 0; f < sub->nf; f++) {
+        for (int k = 0; k < 3; k++) d->tri[3 * (fb + f) + k] = vb + sub->tri[3 * f + k];
+        d->fmesh[fb + f] = fmap[f];
+        d->fchart[fb + f] = c;
+    }
+    *nv_used += sub->nv;
+    *nf_used += sub->nf;
+done:
+    geodesic_pairs_free(&pp);
+    heat_geodesics_free(hg);
+    free(dist); free(vmap); free(fmap);
+    mesh_free(sub);
+    return s;
+}
+
+/* ψ rows: pooled per chart, or per chart vertex (see param_net.h). */
+static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, param_psi_mode mode, train_data *d)
+{
+    double lo[3], hi[3];
+    mesh_bounding_box(m, lo, hi);
+    double mid[3], half = 0;
+    for (int q = 0; q < 3; q++) { mid[q] = 0.5 * (lo[q] + hi[q]); half += (hi[q] - lo[q]) * (hi[q] - lo[q]); }
+    half = 0.5 * sqrt(half);
+    if (!(half > 0)) half = 1;
+    double *vn = NULL;
+    if (!feat) {
+        neuv_status s = vertex_normals(m, &vn);
+        if (s != NEUV_OK) return s;
+    }
+    /* The per-vertex rows first (also the source of the pooled code). */
+    int pd = feat ? dim : 6;
+    float *rows = malloc((size_t)d->nv * (size_t)pd * sizeof(float));
+    if (!rows) { free(vn); return neuv_fail_nomem("psi rows"); }
+    for (int v = 0; v < d->nv; v++) {
+        int mv = d->vmesh[v];
+        float *r = rows + (size_t)v * pd;
+        if (feat) memcpy(r, feat + (size_t)mv * dim, (size_t)dim * sizeof(float));
+        else
+            for (int q = 0; q < 3; q++) {
+                r[q] = (float)((m->pos[3 * mv + q] - mid[q]) / half);
+                r[3 + q] = (float)vn[3 * mv + q];
+            }
+    }
+    free(vn);
+    if (mode == PARAM_PSI_PER_VERTEX) {
+        d->feat = rows;
+        d->psi_dim = pd;
+        return NEUV_OK;
+    }
+    /* Pooled: features → [mean, max]; no features → [centroid, mean normal]
+     * (the centroid and normal are themselves means, a max adds nothing). */
+    int od = feat ? 2 * dim : 6;
+    d->psi = calloc((size_t)d->n_charts * (size_t)od, sizeof(float));
+    int *cnt = calloc((size_t)d->n_charts, sizeof(int));
+    if (!d->psi || !cnt) { free(rows); free(cnt); return neuv_fail_nomem("psi"); }
+    double *acc = calloc((size_t)d->n_charts * (size_t)pd, sizeof(double));
+    if (!acc) { free(rows); free(cnt); return neuv_fail_nomem("psi"); }
+    for (int v = 0; v < d->nv; v++) {
+        int c = d->vchart[v];
+        const float *r = rows + (size_t)v * pd;
+        float *p = d->psi + (size_t)c * od;
+        for (int k = 0; k < pd; k++) {
+            acc[(size_t)c * pd + k] += r[k];
+            if (feat && (cnt[c] == 0 || r[k] > p[dim + k])) p[dim + k] = r[k];
+        }
+        cnt[c]++;
+    }
+    for (int c = 0; c < d->n_charts; c++)
+        for (int k = 0; k < pd; k++)
+            d->psi[(size_t)c * od + k] = (float)(acc[(size_t)c * pd + k] / (cnt[c] ? cnt[c] : 1));
+    free(acc); free(cnt); free(rows);
+    d->psi_dim = od;
+    return NEUV_OK;
+}
+
+static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, int n_charts, const float *feat,
+                                    int dim, const param_net_options *o, train_data *d)
+{
+    memset(d, 0, sizeof *d);
+    d->n_charts = n_charts;
+    /* Chart vertex count: one per (chart, vertex) pair. */
+    int *seen = malloc((size_t)m->nv * sizeof(int));
+    if (!seen) return neuv_fail_nomem("chart vertices");
+    for (int v = 0; v < m->nv; v++) seen[v] = -1;
+    int *order = malloc((size_t)m->nf * sizeof(int)), *start = calloc((size_t)n_charts + 1, sizeof(int));
+    if (!order || !start) { free(seen); free(order); free(start); return neuv_fail_nomem("chart faces"); }
+    for (int f = 0; f < m->nf; f++) start[face_chart[f] + 1]++;
+    for (int c = 0; c < n_charts; c++) start[c + 1] += start[c];
+    int *pos = malloc((size_t)(n_charts + 1) * sizeof(int));
+    if (!pos) { free(seen); free(order); free(start); return neuv_fail_nomem("chart faces"); }
+    memcpy(pos, start, (size_t)(n_charts + 1) * sizeof(int));
+    for (int f = 0; f < m->nf; f++) order[pos[face_chart[f]]++] = f;
+    free(pos);
+    long nv = 0;
+    for (int c = 0; c < n_charts; c++)
+        for (int k = start[c]; k < start[c + 1]; k++)
+            for (int q = 0; q < 3; q++) {
+                int v = m->tri[3 * order[k] + q];
+                if (seen[v] != c) { seen[v] = c; nv++; }
+            }
+    free(seen); free(order); free(start);
+    d->nv = (int)nv;
+    d->nf = m->nf;
+    d->vmesh = malloc((size_t)nv * sizeof(int));
+    d->vchart = malloc((size_t)nv * sizeof(int));
+    d->x = malloc((size_t)nv * 3 * sizeof(float));
+    d->tri = malloc((size_t)m->nf * 3 * sizeof(int));
+    d->fmesh = malloc((size_t)m->nf * sizeof(int));
+    d->fchart = malloc((size_t)m->nf * sizeof(int));
+    d->fcum = malloc((size_t)m->nf * sizeof(double));
+    d->cos3d = malloc((size_t)m->nf * 3 * sizeof(float));
+    d->area3d = malloc((size_t)m->nf * sizeof(float));
+    d->center = malloc((size_t)n_charts * 3 * sizeof(double));
+    d->scale = malloc((size_t)n_charts * sizeof(double));
+    if (!d->vmesh || !d->vchart || !d->x || !d->tri || !d->fmesh || !d->fchart || !d->fcum || !d->cos3d ||
+        !d->area3d || !d->center || !d->scale)
+        return neuv_fail_nomem("training data");
+    int nv_used = 0, nf_used = 0;
+    for (int c = 0; c < n_charts; c++) {
+        neuv_status s = add_chart(m, face_chart, c, o, d, &nv_used, &nf_used);
+        if (s != NEUV_OK) return s;
+        neuv_progress("param", 0.0, "setup chart %d/%d", c + 1, n_charts);
+    }
+    neuv_status s = param_corners_build(d->tri, d->nf, &d->corners);
+    if (s != NEUV_OK) return s;
+    /* Targets in normalized units: from the normalized float positions, in double. */
+    double *xn = malloc((size_t)nv * 3 * sizeof(double));
+    if (!xn) return neuv_fail_nomem("training data");
+    for (long i = 0; i < nv * 3; i++) xn[i] = d->x[i];
+    param_corner_targets(xn, &d->corners, d->cos3d, d->area3d);
+    free(xn);
+    double acc = 0;
+    for (int f = 0; f < d->nf; f++) { acc += d->area3d[f]; d->fcum[f] = acc; }
+    return build_psi(m, feat, dim, o->psi_mode, d);
+}
+
+/* Signed UV area of each face from a #V by 2 float array. */
+static double face_area_uv(const float *uv, const int *t)
+{
+    const float *a = uv + 2 * t[0], *b = uv + 2 * t[1], *c = uv + 2 * t[2];
+    return 0.5 * ((double)(b[0] - a[0]) * (c[1] - a[1]) - (double)(b[1] - a[1]) * (c[0] - a[0]));
+}
+
+/* Orientation of each chart (+1 / -1) from the sign of its total signed UV area. */
+static void chart_orientation(const train_data *d, const float *uv, double *chart_sum, float *orient)
+{
+    for (int c = 0; c < d->n_charts; c++) chart_sum[c] = 0;
+    for (int f = 0; f < d->nf; f++) chart_sum[d->fchart[f]] += face_area_uv(uv, d->tri + 3 * f);
+    for (int f = 0; f < d->nf; f++) orient[f] = chart_sum[d->fchart[f]] < 0 ? -1.0f : 1.0f;
+}
+
+static int sample_face(const train_data *d, rng *r)
+{
+    double t = rng_uniform(r) * d->fcum[d->nf - 1];
+    int lo = 0, hi = d->nf - 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (d->fcum[mid] > t) hi = mid; else lo = mid + 1;
+    }
+    return lo;
+}
+
+typedef struct step_buffers {
+    int np, nq;          /* points per step (vertices + face points), pairs per step */
+    float *x;            /* np by 3 */
+    int *row;            /* np: chart (pooled) */
+    float *feat;         /* np by psi_dim (per-vertex) */
+    int *pi, *pj;        /* nq */
+    float *g;            /* nq */
+    float *orient;       /* nf */
+    double *chart_sum;   /* n_charts */
+} step_buffers;
+
+static void step_buffers_free(step_buffers *b)
+{
+    free(b->x); free(b->row); free(b->feat); free(b->pi); free(b->pj); free(b->g); free(b->orient);
+    free(b->chart_sum);
+}
+
+/* Fills one step's inputs: every chart vertex, then face points drawn anew. */
+static void draw_step(const train_data *d, const param_net_options *o, rng *r, step_buffers *b)
+{
+    int nv = d->nv, pd = d->psi_dim;
+    for (int i = nv; i < b->np; i++) {
+        int f = sample_face(d, r);
+        double r1 = sqrt(rng_uniform(r)), r2 = rng_uniform(r);
+        double w[3] = {1 - r1, r1 * (1 - r2), r1 * r2};
+        const int *t = d->tri + 3 * f;
+        for (int q = 0; q < 3; q++)
+            b->x[3 * i + q] = (float)(w[0] * d->x[3 * t[0] + q] + w[1] * d->x[3 * t[1] + q] + w[2] * d->x[3 * t[2] + q]);
+        b->row[i] = d->fchart[f];
+        if (o->psi_mode == PARAM_PSI_PER_VERTEX)
+            for (int k = 0; k < pd; k++)
+                b->feat[(size_t)i * pd + k] = (float)(w[0] * d->feat[(size_t)t[0] * pd + k] +
+                                                      w[1] * d->feat[(size_t)t[1] * pd + k] +
+                                                      w[2] * d->feat[(size_t)t[2] * pd + k]);
+    }
+    if ((size_t)b->nq == d->pairs.n) return; /* all pairs, filled once */
+    for (int k = 0; k < b->nq; k++) {
+        size_t p = (size_t)(rng_uniform(r) * (double)d->pairs.n);
+        if (p >= d->pairs.n) p = d->pairs.n - 1;
+        b->pi[k] = d->pairs.i[p]; b->pj[k] = d->pairs.j[p]; b->g[k] = (float)d->pairs.d[p];
+    }
+}
+
+static neuv_status step_buffers_init(const train_data *d, const param_net_options *o, step_buffers *b)
+{
+    memset(b, 0, sizeof *b);
+    b->np = d->nv + (o->face_points > 0 ? o->face_points : 0);
+    b->nq = d->pairs.n < (size_t)o->iso_pairs || o->iso_pairs <= 0 ? (int)d->pairs.n : o->iso_pairs;
+    int nq = b->nq > 0 ? b->nq : 1;
+    b->x = malloc((size_t)b->np * 3 * sizeof(float));
+    b->row = malloc((size_t)b->np * sizeof(int));
+    b->pi = malloc((size_t)nq * sizeof(int));
+    b->pj = malloc((size_t)nq * sizeof(int));
+    b->g = malloc((size_t)nq * sizeof(float));
+    b->orient = malloc((size_t)d->nf * sizeof(float));
+    b->chart_sum = malloc((size_t)d->n_charts * sizeof(double));
+    if (o->psi_mode == PARAM_PSI_PER_VERTEX) b->feat = malloc((size_t)b->np * d->psi_dim * sizeof(float));
+    if (!b->x || !b->row || !b->pi || !b->pj || !b->g || !b->orient || !b->chart_sum ||
+        (o->psi_mode == PARAM_PSI_PER_VERTEX && !b->feat))
+        return neuv_fail_nomem("training step buffers");
+    memcpy(b->x, d->x, (size_t)d->nv * 3 * sizeof(float));
+    memcpy(b->row, d->vchart, (size_t)d->nv * sizeof(int));
+    if (b->feat) memcpy(b->feat, d->feat, (size_t)d->nv * d->psi_dim * sizeof(float));
+    if ((size_t)b->nq == d->pairs.n)
+        for (int k = 0; k < b->nq; k++) {
+            b->pi[k] = d->pairs.i[k]; b->pj[k] = d->pairs.j[k]; b->g[k] = (float)d->pairs.d[k];
+        }
+    return NEUV_OK;
+}
+
+static neuv_status check_input(const neuv_mesh *m, const int *face_chart, int n_charts, const float *feat,
+                               int dim, const param_net_options *o, const double *corner_uv)
+{
+    if (!m || !face_chart || !corner_uv || m->nf < 1)
+        return neuv_fail(NEUV_ERR_INPUT, "parameterization needs a mesh with faces, charts and an output array");
+    if (n_charts < 1) return neuv_fail(NEUV_ERR_INPUT, "parameterization needs at least one chart (got %d)", n_charts);
+    if (feat && dim < 1) return neuv_fail(NEUV_ERR_INPUT, "vertex features given with dimension %d", dim);
+    for (int f = 0; f < m->nf; f++)
+        if (face_chart[f] < 0 || face_chart[f] >= n_charts)
+            return neuv_fail(NEUV_ERR_INPUT, "face %d has chart %d outside 0..%d", f, face_chart[f], n_charts - 1);
+    if (o->width < 1 || o->depth < 1 || o->iters < 1 || !(o->lr > 0) || !(o->sigma > 0) || !(o->radius > 0) ||
+        !(o->radius < 1))
+        return neuv_fail(NEUV_ERR_INPUT, "bad parameterization options (width %d, depth %d, iters %d, radius %g)",
+                         o->width, o->depth, o->iters, o->radius);
+    return NEUV_OK;
+}
+
+neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_charts,
+                              const float *vertex_features, int feature_dim,
+                              const param_net_options *opts, double *corner_uv, param_net_report *rep)
+{
+    param_net_options defaults;
+    if (!opts) { param_net_default_options(&defaults, PARAM_PRESET_FAST); opts = &defaults; }
+    const param_net_options *o = opts;
+    param_net_report local;
+    if (!rep) rep = &local;
+    memset(rep, 0, sizeof *rep);
+    neuv_status s = check_input(m, face_chart, n_charts, vertex_features, feature_dim, o, corner_uv);
+    if (s != NEUV_OK) return s;
+    if (o->threads > 0) nn_set_threads(o->threads);
+    double t0 = now_seconds();
+
+    train_data d;
+    step_buffers b = {0};
+    nn_adam adam = {0};
+    nn_ctx *ctx = NULL;
+    param_net_model *model = calloc(1, sizeof *model);
+    if (!model) return neuv_fail_nomem("parameterization model");
+    nn_params_init(&model->params);
+    s = train_data_build(m, face_chart, n_charts, vertex_features, feature_dim, o, &d);
+    if (s != NEUV_OK) goto done;
+    rep->pairs = (long)d.pairs.n;
+    s = step_buffers_init(&d, o, &b);
+    if (s != NEUV_OK) goto done;
+
+    rng r;
+    rng_seed(&r, o->seed * 0x9E3779B97F4A7C15ull + 17);
+    s = param_mlp_create(&model->f, 3, d.psi_dim, o->width, 2, o->depth, o->leaky_slope, &r, &model->params, "f");
+    if (s == NEUV_OK)
+        s = param_mlp_create(&model->g, 2, d.psi_dim, o->width, 3, o->depth, o->leaky_slope, &r, &model->params, "g");
+    if (s != NEUV_OK) goto done;
+    model->psi_mode = o->psi_mode;
+    model->psi_dim = d.psi_dim;
+    model->n_charts = n_charts;
+    rep->parameters = 0;
+    for (int k = 0; k < model->params.n; k++)
+        if (model->params.t[k]->name[0] == 'f')
+            rep->parameters += (long)model->params.t[k]->rows * model->params.t[k]->cols;
+    nn_adam_config ac = nn_adam_defaults();
+    ac.lr = o->lr;
+    s = nn_adam_init(&adam, &model->params, &ac);
+    if (s != NEUV_OK) goto done;
+    ctx = nn_ctx_create(0);
+    if (!ctx) { s = neuv_fail_nomem("training context"); goto done; }
+    double t1 = now_seconds();
+    rep->setup_seconds = t1 - t0;
+
+    int pooled = o->psi_mode == PARAM_PSI_POOLED;
+    double window_sum = 0, prev_window = INFINITY;
+    int it;
+    for (it = 0; it < o->iters; it++) {
+        draw_step(&d, o, &r, &b);
+        nn_ctx_reset(ctx);
+        nn_tensor *x = nn_from(ctx, b.np, 3, b.x);
+        nn_tensor *psi = pooled ? nn_view(ctx, n_charts, d.psi_dim, d.psi) : nn_from(ctx, b.np, d.psi_dim, b.feat);
+        const int *row = pooled ? b.row : NULL;
+        nn_tensor *uv = param_mlp_forward(ctx, &model->f, x, psi, row);
+        nn_tensor *xr = param_mlp_forward(ctx, &model->g, uv, psi, row);
+        if (!uv || !xr) { s = nn_ctx_status(ctx); goto done; }
+        /* The orientation each chart has now: L_area compares signed areas against it. */
+        chart_orientation(&d, uv->data, b.chart_sum, b.orient);
+        double la = o->lambda[2], lr_ = o->lambda[3];
+        if (o->warmup_iters > 0 && it >= o->warmup_iters) {
+            if (o->lambda_late[0] > 0) la = o->lambda_late[0];
+            if (o->lambda_late[1] > 0) lr_ = o->lambda_late[1];
+        }
+        nn_tensor *lc = param_loss_cycle(ctx, x, xr);
+        nn_tensor *li = b.nq > 0 ? param_loss_iso(ctx, uv, b.pi, b.pj, nn_from(ctx, b.nq, 1, b.g), b.nq)
+                                 : nn_fill(ctx, 1, 1, 0);
+        nn_tensor *lang = param_loss_angle(ctx, uv, &d.corners, nn_view(ctx, 3 * d.nf, 1, d.cos3d));
+        nn_tensor *lar = param_loss_area(ctx, uv, &d.corners, nn_view(ctx, d.nf, 1, d.area3d),
+                                         nn_view(ctx, d.nf, 1, b.orient));
+        nn_tensor *loss = nn_add(ctx, nn_add(ctx, nn_scale(ctx, lc, (float)o->lambda[0]), nn_scale(ctx, li, (float)o->lambda[1])),
+                                 nn_add(ctx, nn_scale(ctx, lang, (float)la), nn_scale(ctx, lar, (float)lr_)));
+        nn_params_zero_grad(&model->params);
+        s = nn_backward(ctx, loss);
+        if (s != NEUV_OK) goto done;
+        if (!isfinite(loss->data[0])) { s = neuv_fail(NEUV_ERR_INTERNAL, "parameterization loss is not finite at iteration %d", it); goto done; }
+        nn_adam_step(&adam);
+        rep->loss = loss->data[0];
+        rep->loss_cycle = lc->data[0]; rep->loss_iso = li->data[0];
+        rep->loss_angle = lang->data[0]; rep->loss_area = lar->data[0];
+        if (it % 10 == 0 || it == o->iters - 1)
+            neuv_progress("param", (double)(it + 1) / o->iters, "iter %d loss %.5f", it + 1, rep->loss);
+        /* Plateau: the mean loss of a window improved by less than plateau_tol on the
+         * previous one. The angle/area weights change at warm-up, so windows restart there. */
+        if (it == o->warmup_iters && o->warmup_iters > 0) { window_sum = 0; prev_window = INFINITY; }
+        window_sum += rep->loss;
+        int w = o->plateau_window > 0 ? o->plateau_window : 0;
+        if (w > 0 && (it + 1) % w == 0) {
+            double mean = window_sum / w;
+            window_sum = 0;
+            if (it + 1 >= o->min_iters && it + 1 > o->warmup_iters && prev_window - mean < o->plateau_tol * prev_window) {
+                rep->stopped_on_plateau = 1;
+                it++;
+                break;
+            }
+            prev_window = mean;
+        }
+    }
+    rep->iters = it;
+    rep->train_seconds = now_seconds() - t1;
+
+    /* Final map at the vertices, oriented counter-clockwise per chart. */
+    nn_ctx_reset(ctx);
+    {
+        nn_tensor *x = nn_from(ctx, d.nv, 3, d.x);
+        nn_tensor *psi = pooled ? nn_view(ctx, n_charts, d.psi_dim, d.psi) : nn_from(ctx, d.nv, d.psi_dim, d.feat);
+        nn_tensor *uv = param_mlp_forward(ctx, &model->f, x, psi, pooled ? d.vchart : NULL);
+        nn_tensor *xr = param_mlp_forward(ctx, &model->g, uv, psi, pooled ? d.vchart : NULL);
+        if (!uv || !xr) { s = nn_ctx_status(ctx); goto done; }
+        double cyc = 0;
+        for (long i = 0; i < (long)d.nv * 3; i++) cyc += (double)(xr->data[i] - x->data[i]) * (xr->data[i] - x->data[i]);
+        rep->cycle_rms = sqrt(cyc / d.nv);
+        chart_orientation(&d, uv->data, b.chart_sum, b.orient);
+        model->center = d.center; d.center = NULL;
+        model->scale = d.scale; d.scale = NULL;
+        model->psi = d.psi; d.psi = NULL;
+        model->mirror = malloc((size_t)n_charts * sizeof(int));
+        if (!model->mirror) { s = neuv_fail_nomem("chart orientation"); goto done; }
+        for (int c = 0; c < n_charts; c++) model->mirror[c] = b.chart_sum[c] < 0;
+        rep->flipped = 0;
+        for (int f = 0; f < d.nf; f++) {
+            double a = face_area_uv(uv->data, d.tri + 3 * f) * b.orient[f];
+            if (a <= 0) rep->flipped++;
+            int c = d.fchart[f], mf = d.fmesh[f];
+            double sc = model->scale[c], sign = model->mirror[c] ? -1 : 1;
+            for (int k = 0; k < 3; k++) {
+                const float *p = uv->data + 2 * d.tri[3 * f + k];
+                corner_uv[6 * mf + 2 * k] = sign * p[0] / sc;
+                corner_uv[6 * mf + 2 * k + 1] = p[1] / sc;
+            }
+        }
+    }
+    s = NEUV_OK;
+done:
+    nn_ctx_free(ctx);
+    nn_adam_free(&adam);
+    step_buffers_free(&b);
+    train_data_free(&d);
+    if (s == NEUV_OK && o->keep_model) rep->model = model;
+    else param_net_model_free(model);
+    rep->seconds = now_seconds() - t0;
+    return s;
+}

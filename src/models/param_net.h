@@ -1,0 +1,123 @@
+/* The surface parameterization networks of Pokhariya et al. 2022
+ * ("Discretization-Agnostic Deep Self-Supervised 3D Surface Parameterization",
+ * section 3.2; SPEC.md section 1.3): one pair of MLPs, MLP_f(x, ψ) -> uv and
+ * MLP_f⁻¹(uv, ψ) -> x, conditioned on a per-chart code ψ, flattens every chart
+ * of a shape; the charts are trained together (every step mixes all charts).
+ *
+ * Loss (param_losses.h): λ1 L_cycle + λ2 L_iso + λ3 L_angle + λ4 L_area.
+ *
+ * Chart normalization: a chart is centred at its area-weighted centroid and
+ * scaled by s so that its geodesic radius (largest heat-method distance from
+ * the vertex nearest the centroid) is `radius` (0.6): an isometric map then
+ * stays inside tanh's range with margin, and σ = 0.2 means the same share of
+ * every chart. normalized = (x − centre) s; UVs come back divided by s, so they
+ * are in the mesh's length units (what a packer wants).
+ *
+ * ψ: pooled (default) = [mean, max] over the chart's vertices of the input
+ * per-vertex features (#V by D, e.g. DiffusionNet's), 2D numbers; with no
+ * features, [centroid, mean unit normal] of the chart (centroid relative to the
+ * mesh's bounding box, 6 numbers). It enters the first layer linearly, so a
+ * learned projection before it would only factor that layer's ψ block and is
+ * left out. Per-vertex (the paper's ablation): each point's own features
+ * (barycentric inside faces; with no features the point's position relative to
+ * the bounding box and its interpolated vertex normal). */
+#ifndef NEUV_MODELS_PARAM_NET_H
+#define NEUV_MODELS_PARAM_NET_H
+
+#include <stdint.h>
+
+#include "mesh/mesh.h"
+#include "models/param_mlp.h"
+#include "nn/nn.h"
+
+typedef enum param_preset { PARAM_PRESET_FAST = 0, PARAM_PRESET_PAPER = 1 } param_preset;
+typedef enum param_psi_mode { PARAM_PSI_POOLED = 0, PARAM_PSI_PER_VERTEX = 1 } param_psi_mode;
+
+typedef struct param_net_model param_net_model;
+
+typedef struct param_net_options {
+    int width, depth;       /* hidden width and linear layers of each MLP */
+    float leaky_slope;      /* 0.01 */
+    float lr;               /* Adam learning rate, 1e-3 */
+    double lambda[4];       /* cycle, iso, angle, area: [1, 1, 0.001, 0.001] */
+    /* fast-preset deviation (documented in bench/RESULTS.md): after
+     * `warmup_iters`, λ_angle and λ_area become lambda_late[0..1] (0: unchanged). */
+    int warmup_iters;
+    double lambda_late[2];
+    double sigma;           /* L_iso pair radius in normalized units, 0.2 */
+    double radius;          /* normalized geodesic radius of every chart, 0.6 */
+    int iters;              /* iteration cap */
+    int min_iters;          /* no plateau stop before this */
+    int plateau_window;     /* iterations per window of the plateau test */
+    double plateau_tol;     /* stop when a window's mean loss improves by less than this share */
+    int face_points;        /* random points inside faces per step (L_cycle) */
+    int iso_pairs;          /* geodesic pairs per step (all when there are fewer) */
+    param_psi_mode psi_mode;
+    uint64_t seed;
+    int threads;            /* > 0: nn_set_threads(threads) before training; 0: leave as is */
+    int keep_model;         /* 1: the trained model is returned in report->model */
+} param_net_options;
+
+typedef struct param_net_report {
+    int iters;              /* iterations run */
+    int stopped_on_plateau;
+    long parameters;        /* per MLP (both have nearly the same count; this is MLP_f) */
+    double loss, loss_cycle, loss_iso, loss_angle, loss_area; /* last step, unweighted terms */
+    double setup_seconds, train_seconds, seconds;
+    long pairs;             /* geodesic pairs under σ over all charts */
+    int flipped;            /* faces whose UV orientation disagrees with their chart's */
+    double cycle_rms;       /* RMS of ‖MLP_f⁻¹(MLP_f(x)) − x‖ at the vertices, normalized units */
+    param_net_model *model; /* when keep_model: the trained model (free with param_net_model_free) */
+} param_net_report;
+
+/* Fills o for a preset: PARAM_PRESET_FAST (the default: the smallest networks
+ * that reach the quality bar, see bench/RESULTS.md) or PARAM_PRESET_PAPER (8
+ * layers, width 464: about 1.3·10^6 parameters per MLP, Adam 1e-3, the paper's
+ * loss weights). */
+void param_net_default_options(param_net_options *o, param_preset preset);
+
+/* Flattens every chart with one jointly trained pair of networks.
+ *
+ * Inputs:
+ *   m                mesh, #V by 3, #F by 3
+ *   face_chart       #F chart id per face, 0..n_charts-1, each chart a disk
+ *   vertex_features  #V by feature_dim (row-major float32), or NULL (see ψ above)
+ *   o                options (NULL: fast preset)
+ * Outputs:
+ *   corner_uv        #F by 3 by 2: the UV of each face corner, each chart in
+ *                    its own frame, in mesh length units, counter-clockwise
+ *   rep              may be NULL
+ * Returns NEUV_OK, NEUV_ERR_INPUT (bad charts or options), NEUV_ERR_NOMEM or
+ * NEUV_ERR_INTERNAL (a geodesic solve or a training step failed). */
+neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_charts,
+                              const float *vertex_features, int feature_dim,
+                              const param_net_options *o, double *corner_uv, param_net_report *rep);
+
+/* A trained pair of networks and what is needed to apply it again. */
+struct param_net_model {
+    nn_params params;       /* every weight: "f.*" (MLP_f) and "g.*" (MLP_f⁻¹) */
+    param_mlp f, g;
+    param_psi_mode psi_mode;
+    int psi_dim, n_charts;
+    float *psi;             /* n_charts by psi_dim (pooled mode) */
+    double *center;         /* n_charts by 3: area-weighted centroid, mesh units */
+    double *scale;          /* n_charts: normalized = (x − center) scale */
+    int *mirror;            /* n_charts: 1 when u was negated to make the chart counter-clockwise */
+};
+
+void param_net_model_free(param_net_model *model);
+
+/* UVs of surface points of chart `chart_id` by inference (pooled ψ only: a
+ * per-vertex model needs each point's features).
+ * Inputs:  points  #N by 3, mesh units
+ * Outputs: uv      #N by 2, the chart's frame in mesh units (as corner_uv)
+ * Returns NEUV_OK, NEUV_ERR_INPUT (bad chart id, per-vertex model) or NEUV_ERR_NOMEM. */
+neuv_status param_net_apply(const param_net_model *model, int chart_id, const double *points, int n,
+                            double *uv);
+
+/* Surface points of chart `chart_id` from UVs by MLP_f⁻¹ (the inverse map).
+ * Inputs: uv #N by 2 (as param_net_apply returns). Outputs: points #N by 3, mesh units. */
+neuv_status param_net_apply_inverse(const param_net_model *model, int chart_id, const double *uv, int n,
+                                    double *points);
+
+#endif

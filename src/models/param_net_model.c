@@ -1,0 +1,81 @@
+/* Inference with a trained parameterization model (param_net.h). */
+#include <stdlib.h>
+
+#include "core/error.h"
+#include "models/param_net.h"
+
+void param_net_model_free(param_net_model *model)
+{
+    if (!model) return;
+    param_mlp_free(&model->f);
+    param_mlp_free(&model->g);
+    nn_params_free(&model->params);
+    free(model->psi); free(model->center); free(model->scale); free(model->mirror);
+    free(model);
+}
+
+/* Runs one of the networks on n rows of the chart's normalized inputs. */
+static neuv_status run_net(const param_net_model *model, const param_mlp *net, int chart_id, const float *in,
+                           int n, int in_dim, float *out, int out_dim)
+{
+    if (!model || chart_id < 0 || chart_id >= model->n_charts)
+        return neuv_fail(NEUV_ERR_INPUT, "chart %d is not in the model (%d charts)", chart_id,
+                         model ? model->n_charts : 0);
+    if (model->psi_mode != PARAM_PSI_POOLED || !model->psi)
+        return neuv_fail(NEUV_ERR_INPUT, "a per-vertex-feature model cannot be applied without features");
+    nn_ctx *ctx = nn_ctx_create(0);
+    int *row = calloc((size_t)(n > 0 ? n : 1), sizeof(int));
+    if (!ctx || !row) { nn_ctx_free(ctx); free(row); return neuv_fail_nomem("parameterization inference"); }
+    nn_tensor *x = nn_from(ctx, n, in_dim, in);
+    nn_tensor *psi = nn_view(ctx, 1, model->psi_dim, model->psi + (size_t)chart_id * model->psi_dim);
+    nn_tensor *y = param_mlp_forward(ctx, net, x, psi, row);
+    neuv_status s = y ? NEUV_OK : nn_ctx_status(ctx);
+    if (y) for (long i = 0; i < (long)n * out_dim; i++) out[i] = y->data[i];
+    nn_ctx_free(ctx);
+    free(row);
+    return s;
+}
+
+neuv_status param_net_apply(const param_net_model *model, int chart_id, const double *points, int n, double *uv)
+{
+    if (n <= 0) return NEUV_OK;
+    if (!model || chart_id < 0 || chart_id >= model->n_charts)
+        return neuv_fail(NEUV_ERR_INPUT, "chart %d is not in the model", chart_id);
+    float *in = malloc((size_t)n * 3 * sizeof(float)), *out = malloc((size_t)n * 2 * sizeof(float));
+    if (!in || !out) { free(in); free(out); return neuv_fail_nomem("parameterization inference"); }
+    const double *c = model->center + 3 * chart_id;
+    double sc = model->scale[chart_id];
+    for (int i = 0; i < n; i++)
+        for (int q = 0; q < 3; q++) in[3 * i + q] = (float)((points[3 * i + q] - c[q]) * sc);
+    neuv_status s = run_net(model, &model->f, chart_id, in, n, 3, out, 2);
+    double sign = model->mirror[chart_id] ? -1 : 1;
+    if (s == NEUV_OK)
+        for (int i = 0; i < n; i++) {
+            uv[2 * i] = sign * out[2 * i] / sc;
+            uv[2 * i + 1] = out[2 * i + 1] / sc;
+        }
+    free(in); free(out);
+    return s;
+}
+
+neuv_status param_net_apply_inverse(const param_net_model *model, int chart_id, const double *uv, int n,
+                                    double *points)
+{
+    if (n <= 0) return NEUV_OK;
+    if (!model || chart_id < 0 || chart_id >= model->n_charts)
+        return neuv_fail(NEUV_ERR_INPUT, "chart %d is not in the model", chart_id);
+    float *in = malloc((size_t)n * 2 * sizeof(float)), *out = malloc((size_t)n * 3 * sizeof(float));
+    if (!in || !out) { free(in); free(out); return neuv_fail_nomem("parameterization inference"); }
+    double sc = model->scale[chart_id], sign = model->mirror[chart_id] ? -1 : 1;
+    for (int i = 0; i < n; i++) {
+        in[2 * i] = (float)(sign * uv[2 * i] * sc);
+        in[2 * i + 1] = (float)(uv[2 * i + 1] * sc);
+    }
+    neuv_status s = run_net(model, &model->g, chart_id, in, n, 2, out, 3);
+    const double *c = model->center + 3 * chart_id;
+    if (s == NEUV_OK)
+        for (int i = 0; i < n; i++)
+            for (int q = 0; q < 3; q++) points[3 * i + q] = out[3 * i + q] / sc + c[q];
+    free(in); free(out);
+    return s;
+}

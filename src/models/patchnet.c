@@ -1,0 +1,455 @@
+/* PatchNet: see patchnet.h.
+ *
+ * Decisions (measured, see bench/RESULTS.md "PatchNet (issue 6)"):
+ *   - Input features default to HKS: rigid-motion and scale invariant, so the
+ *     same surface posed differently gets the same patches, and the patches
+ *     follow intrinsic shape parts; xyz trains to similar losses but its
+ *     charts move with the pose.
+ *   - Auto K splits failing charts with charts_split instead of retraining
+ *     with a larger K: one LSCM per new chart costs milliseconds, a retrain
+ *     costs the whole training time again, and the split loop always
+ *     terminates on a disk that flattens (small enough charts are nearly flat). */
+#include "models/patchnet.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "charts/charts.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "core/rng.h"
+#include "core/timer.h"
+#include "flatten/lscm.h"
+#include "geometry/heat_geodesics.h"
+#include "losses/patch_losses.h"
+#include "metrics/uv_metrics.h"
+#include "nn/adam.h"
+
+void patchnet_default_options(patchnet_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->charts = 0;
+    o->max_distortion = 1.15;
+    o->max_charts = 64;
+    o->initial_charts = 8;
+    o->iters = 300;
+    o->blocks = 2;
+    o->width = 32;
+    o->k_eig = 64;
+    o->features = DIFFUSION_NET_HKS;
+    o->seed = 1;
+    o->geo_sources = 128;
+    o->plateau_window = 25;
+    o->plateau_tol = 1e-3;
+    o->lr = 1e-3f;
+    o->min_area_share = 0.002;
+}
+
+neuv_status patchnet_apply_preset(patchnet_options *o, const char *preset)
+{
+    if (!strcmp(preset, "fast")) {
+        o->blocks = 2; o->width = 32; o->iters = 300; o->geo_sources = 128;
+    } else if (!strcmp(preset, "paper")) {
+        o->blocks = 4; o->width = 128; o->iters = 2000; o->geo_sources = 256;
+    } else {
+        return neuv_fail(NEUV_ERR_INPUT, "unknown preset '%s' (expected fast or paper)", preset);
+    }
+    o->k_eig = 64;
+    return NEUV_OK;
+}
+
+neuv_status patchnet_model_create(patchnet_model *model, const patchnet_options *o, int in_dim, int k)
+{
+    memset(model, 0, sizeof *model);
+    nn_params_init(&model->params);
+    if (k < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: number of patches must be >= 1, got %d", k);
+    diffusion_net_config cfg = {.in = in_dim, .width = o->width, .out = k, .blocks = o->blocks,
+                                .seed = o->seed};
+    neuv_status st = diffusion_net_create(&model->net, &cfg, &model->params, "patchnet");
+    if (st) { nn_params_free(&model->params); return st; }
+    model->k = k;
+    model->k_eig = o->k_eig;
+    model->features = o->features;
+    model->in_dim = in_dim;
+    return NEUV_OK;
+}
+
+void patchnet_model_free(patchnet_model *model)
+{
+    if (!model) return;
+    diffusion_net_free(&model->net);
+    nn_params_free(&model->params);
+}
+
+/* Per-face constants of the losses: areas #F by 1, unit normals #F by 3. */
+static neuv_status face_area_normal(const neuv_mesh *m, float **area, float **normal)
+{
+    *area = malloc(sizeof(float) * (size_t)m->nf);
+    *normal = malloc(sizeof(float) * 3 * (size_t)m->nf);
+    if (!*area || !*normal) return neuv_fail_nomem("face areas");
+    for (int f = 0; f < m->nf; f++) {
+        double n[3];
+        (*area)[f] = (float)mesh_face_area(m, f);
+        mesh_face_normal(m, f, n);
+        for (int d = 0; d < 3; d++) (*normal)[3 * f + d] = (float)n[d];
+    }
+    return NEUV_OK;
+}
+
+/* S source faces drawn uniformly without replacement (partial Fisher-Yates,
+ * seeded), sorted so the distance rows are in face order. */
+static int cmp_int(const void *a, const void *b) { int x = *(const int *)a, y = *(const int *)b; return (x > y) - (x < y); }
+
+static neuv_status sample_sources(int nf, int s, uint64_t seed, int *out)
+{
+    int *perm = malloc(sizeof(int) * (size_t)nf);
+    if (!perm) return neuv_fail_nomem("L_geo sources");
+    for (int i = 0; i < nf; i++) perm[i] = i;
+    rng r;
+    rng_seed(&r, seed ^ 0x9e3779b97f4a7c15ull);
+    for (int i = 0; i < s; i++) {
+        int j = i + rng_below(&r, nf - i);
+        int t = perm[i]; perm[i] = perm[j]; perm[j] = t;
+    }
+    memcpy(out, perm, sizeof(int) * (size_t)s);
+    free(perm);
+    qsort(out, (size_t)s, sizeof(int), cmp_int);
+    return NEUV_OK;
+}
+
+/* D rows for the sources: #S by #F, geodesic distance / geodesic diameter.
+ * Faces in another component (infinite distance) count as 1, the farthest
+ * apart two faces of one component can be. */
+static neuv_status source_distances(const neuv_mesh *m, const int *src, int s, float *dist)
+{
+    heat_geodesics *hg = NULL;
+    neuv_status st = heat_geodesics_create(m, 1.0, &hg);
+    if (st) return st;
+    double diam = 0;
+    double *d = malloc(sizeof(double) * (size_t)m->nf * s);
+    if (!d) { heat_geodesics_free(hg); return neuv_fail_nomem("L_geo distances"); }
+    st = heat_geodesics_diameter(hg, &diam);
+    if (!st) st = heat_geodesics_face_distances(hg, m, src, s, d);
+    heat_geodesics_free(hg);
+    if (st) { free(d); return st; }
+    if (!(diam > 0) || !isfinite(diam)) diam = 1;
+    /* Column-major #F by #S is row-major #S by #F. */
+    for (size_t i = 0; i < (size_t)m->nf * s; i++) {
+        double v = d[i] / diam;
+        dist[i] = (float)(isfinite(v) ? (v < 0 ? 0 : v) : 1.0);
+    }
+    free(d);
+    return NEUV_OK;
+}
+
+/* Face logits -> softmax P (#F by K) for a model on one mesh. */
+static nn_tensor *patchnet_forward(nn_ctx *ctx, const patchnet_model *model, const diffusion_net_geometry *g,
+                                   nn_tensor *x, nn_tensor **hidden)
+{
+    nn_tensor *v = diffusion_net_forward(ctx, &model->net, g, x, hidden);
+    return nn_softmax_rows(ctx, diffusion_net_vertices_to_faces(ctx, g, v));
+}
+
+neuv_status patchnet_train(patchnet_model *model, const neuv_mesh *m, const operators *ops,
+                           const patchnet_options *o, patchnet_report *rep)
+{
+    patchnet_options def;
+    if (!o) { patchnet_default_options(&def); o = &def; }
+    if (!m || m->nf < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: mesh has no faces");
+    int nf = m->nf, nv = m->nv;
+    int S = o->geo_sources < 1 ? 128 : o->geo_sources;
+    if (S > nf) S = nf;
+    diffusion_net_geometry g;
+    neuv_status st = diffusion_net_geometry_create(m, ops, model->k_eig, &g);
+    if (st) return st;
+    float *x = NULL, *area = NULL, *normal = NULL, *dist = NULL;
+    int *src = NULL, dim = 0;
+    nn_ctx *ctx = NULL;
+    nn_adam adam;
+    int adam_ready = 0;
+    double *hist = NULL;
+    if ((st = diffusion_net_input_features(m, ops, model->features, &x, &dim))) goto done;
+    if (dim != model->in_dim) {
+        st = neuv_fail(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim, dim);
+        goto done;
+    }
+    if ((st = face_area_normal(m, &area, &normal))) goto done;
+    src = malloc(sizeof(int) * (size_t)S);
+    dist = malloc(sizeof(float) * (size_t)S * nf);
+    int iters = o->iters > 0 ? o->iters : 300;
+    hist = malloc(sizeof(double) * (size_t)iters);
+    if (!src || !dist || !hist) { st = neuv_fail_nomem("PatchNet training"); goto done; }
+    double t0 = now_seconds();
+    if ((st = sample_sources(nf, S, o->seed, src))) goto done;
+    if ((st = source_distances(m, src, S, dist))) goto done;
+    double t_geo = now_seconds() - t0;
+    nn_adam_config acfg = nn_adam_defaults();
+    acfg.lr = o->lr > 0 ? o->lr : 1e-3f;
+    if ((st = nn_adam_init(&adam, &model->params, &acfg))) goto done;
+    adam_ready = 1;
+    ctx = nn_ctx_create(0);
+    if (!ctx) { st = neuv_fail_nomem("PatchNet arena"); goto done; }
+    int W = o->plateau_window > 0 ? o->plateau_window : 25;
+    double t1 = now_seconds();
+    int it = 0, plateaued = 0;
+    double lc = 0, lg = 0;
+    for (it = 0; it < iters; it++) {
+        nn_ctx_reset(ctx);
+        diffusion_net_clamp_times(&model->net);
+        nn_tensor *xin = nn_view(ctx, nv, dim, x);
+        nn_tensor *a = nn_view(ctx, nf, 1, area);
+        nn_tensor *n = nn_view(ctx, nf, 3, normal);
+        nn_tensor *D = nn_view(ctx, S, nf, dist);
+        nn_tensor *P = patchnet_forward(ctx, model, &g, xin, NULL);
+        nn_tensor *Lc = patch_loss_cos(ctx, P, a, n);
+        nn_tensor *Lg = patch_loss_geo(ctx, P, a, src, S, D);
+        nn_tensor *L = nn_add(ctx, Lc, Lg);
+        nn_params_zero_grad(&model->params);
+        if ((st = nn_backward(ctx, L))) goto done;
+        if (!isfinite(L->data[0])) { st = neuv_fail(NEUV_ERR_INTERNAL, "PatchNet: loss is not finite at iteration %d", it); goto done; }
+        nn_adam_step(&adam);
+        hist[it] = L->data[0];
+        lc = Lc->data[0];
+        lg = Lg->data[0];
+        if (it % 10 == 0 || it == iters - 1)
+            neuv_progress("patches", (double)(it + 1) / iters, "iter %d loss %.4f", it + 1, hist[it]);
+        /* Plateau: the mean of the last W losses improves on the W before by
+         * less than plateau_tol of the earlier mean. */
+        if (it + 1 >= 2 * W) {
+            double prev = 0, cur = 0;
+            for (int j = it + 1 - 2 * W; j < it + 1 - W; j++) prev += hist[j];
+            for (int j = it + 1 - W; j <= it; j++) cur += hist[j];
+            if (prev - cur < o->plateau_tol * fabs(prev)) { it++; plateaued = 1; break; }
+        }
+    }
+    double t_train = now_seconds() - t1;
+    diffusion_net_clamp_times(&model->net);
+    if (rep) {
+        rep->k = model->k;
+        rep->iterations = it;
+        rep->plateaued = plateaued;
+        rep->loss = it > 0 ? hist[it - 1] : NAN;
+        rep->loss_cos = lc;
+        rep->loss_geo = lg;
+        rep->geodesic_seconds = t_geo;
+        rep->train_seconds = t_train;
+        rep->iters_per_second = t_train > 0 ? it / t_train : 0;
+    }
+done:
+    if (ctx) nn_ctx_free(ctx);
+    if (adam_ready) nn_adam_free(&adam);
+    diffusion_net_geometry_free(&g);
+    free(x); free(area); free(normal); free(dist); free(src); free(hist);
+    return st;
+}
+
+neuv_status patchnet_infer_features(const patchnet_model *model, const neuv_mesh *m, const operators *ops,
+                                    int *face_label, float **vertex_features, int *feature_dim)
+{
+    if (vertex_features) *vertex_features = NULL;
+    if (feature_dim) *feature_dim = 0;
+    diffusion_net_geometry g;
+    neuv_status st = diffusion_net_geometry_create(m, ops, model->k_eig, &g);
+    if (st) return st;
+    float *x = NULL;
+    int dim = 0;
+    nn_ctx *ctx = NULL;
+    if ((st = diffusion_net_input_features(m, ops, model->features, &x, &dim))) goto done;
+    if (dim != model->in_dim) {
+        st = neuv_fail(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim, dim);
+        goto done;
+    }
+    ctx = nn_ctx_create(0);
+    if (!ctx) { st = neuv_fail_nomem("PatchNet arena"); goto done; }
+    nn_tensor *hidden = NULL;
+    nn_tensor *P = patchnet_forward(ctx, model, &g, nn_view(ctx, m->nv, dim, x), &hidden);
+    if ((st = nn_ctx_status(ctx))) goto done;
+    if (face_label)
+        for (int f = 0; f < m->nf; f++) {
+            const float *p = P->data + (size_t)f * model->k;
+            int best = 0;
+            for (int j = 1; j < model->k; j++)
+                if (p[j] > p[best]) best = j;
+            face_label[f] = best;
+        }
+    if (vertex_features) {
+        size_t n = (size_t)hidden->rows * hidden->cols;
+        float *vf = malloc(sizeof(float) * n);
+        if (!vf) { st = neuv_fail_nomem("PatchNet vertex features"); goto done; }
+        memcpy(vf, hidden->data, sizeof(float) * n);
+        *vertex_features = vf;
+        if (feature_dim) *feature_dim = hidden->cols;
+    }
+done:
+    if (ctx) nn_ctx_free(ctx);
+    diffusion_net_geometry_free(&g);
+    free(x);
+    return st;
+}
+
+neuv_status patchnet_infer(const patchnet_model *model, const neuv_mesh *m, const operators *ops, int *face_label)
+{
+    return patchnet_infer_features(model, m, ops, face_label, NULL, NULL);
+}
+
+neuv_status patchnet_chart_lscm_quality(const neuv_mesh *m, const int *face_chart, int id, double *qce_mean,
+                                        int *flipped)
+{
+    *qce_mean = INFINITY;
+    *flipped = 0;
+    neuv_mesh *sub = NULL;
+    int *vmap = NULL, *fmap = NULL;
+    neuv_status st = chart_submesh(m, face_chart, id, &sub, &vmap, &fmap);
+    if (st) return st;
+    free(vmap);
+    free(fmap);
+    double *uv = malloc(sizeof(double) * 2 * (size_t)sub->nv);
+    if (!uv) { mesh_free(sub); return neuv_fail_nomem("chart UVs"); }
+    st = lscm(sub, uv);
+    if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return st; }
+    if (st == NEUV_OK) {
+        /* A chart LSCM cannot flatten stays at qce INFINITY: the split loop
+         * then cuts it smaller. */
+        st = mesh_set_uv(sub, sub->nv, uv, sub->tri);
+        uv_metrics mt;
+        if (!st) st = uv_metrics_compute(sub, &mt);
+        if (!st) {
+            *qce_mean = isfinite(mt.qce_mean) ? mt.qce_mean : INFINITY;
+            *flipped = mt.flipped + mt.degenerate_uv;
+        }
+        if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return st; }
+    }
+    free(uv);
+    mesh_free(sub);
+    return NEUV_OK;
+}
+
+/* Grows a per-chart array to n entries (new entries: dirty). */
+static neuv_status grow_quality(double **q, int **flip, int **dirty, int *cap, int n)
+{
+    if (n <= *cap) return NEUV_OK;
+    int c = *cap ? *cap : 16;
+    while (c < n) c *= 2;
+    double *nq = realloc(*q, sizeof(double) * (size_t)c);
+    if (!nq) return neuv_fail_nomem("chart qualities");
+    *q = nq;
+    int *nfl = realloc(*flip, sizeof(int) * (size_t)c);
+    if (!nfl) return neuv_fail_nomem("chart qualities");
+    *flip = nfl;
+    int *nd = realloc(*dirty, sizeof(int) * (size_t)c);
+    if (!nd) return neuv_fail_nomem("chart qualities");
+    *dirty = nd;
+    for (int i = *cap; i < c; i++) { nd[i] = 1; nq[i] = INFINITY; nfl[i] = 0; }
+    *cap = c;
+    return NEUV_OK;
+}
+
+/* The chart check and split loop (auto K), or only the check (fixed K). */
+static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, int *face_chart, int *n_charts,
+                                 patchnet_report *rep)
+{
+    double t0 = now_seconds();
+    double *q = NULL;
+    int *flip = NULL, *dirty = NULL, cap = 0, splits = 0;
+    int *count = NULL;
+    neuv_status st = grow_quality(&q, &flip, &dirty, &cap, *n_charts);
+    int auto_k = o->charts <= 0;
+    int max_charts = o->max_charts > 0 ? o->max_charts : 64;
+    while (!st) {
+        for (int c = 0; c < *n_charts && !st; c++)
+            if (dirty[c]) {
+                st = patchnet_chart_lscm_quality(m, face_chart, c, &q[c], &flip[c]);
+                dirty[c] = 0;
+            }
+        if (st || !auto_k) break;
+        /* Failing charts, worst first, each split once this round. */
+        free(count);
+        count = calloc((size_t)*n_charts, sizeof(int));
+        if (!count) { st = neuv_fail_nomem("chart sizes"); break; }
+        for (int f = 0; f < m->nf; f++) count[face_chart[f]]++;
+        int any = 0;
+        for (;;) {
+            int worst = -1;
+            double wq = 0;
+            for (int c = 0; c < *n_charts; c++) {
+                if (dirty[c] || count[c] < 2) continue;
+                int fails = !(q[c] < o->max_distortion) || flip[c] > 0;
+                double score = flip[c] > 0 ? INFINITY : q[c];
+                if (fails && (worst < 0 || score > wq)) { worst = c; wq = score; }
+            }
+            if (worst < 0 || *n_charts >= max_charts) break;
+            int before = *n_charts;
+            if ((st = charts_split(m, face_chart, n_charts, worst))) break;
+            if ((st = grow_quality(&q, &flip, &dirty, &cap, *n_charts))) break;
+            dirty[worst] = 1;
+            for (int c = before; c < *n_charts; c++) dirty[c] = 1;
+            splits++;
+            any = 1;
+        }
+        if (!any) break;
+        neuv_progress("charts", 1.0, "%d charts after %d splits", *n_charts, splits);
+    }
+    if (!st && rep) {
+        rep->splits = splits;
+        rep->charts = *n_charts;
+        rep->worst_qce = 0;
+        rep->flipped = 0;
+        for (int c = 0; c < *n_charts; c++) {
+            if (q[c] > rep->worst_qce) rep->worst_qce = q[c];
+            rep->flipped += flip[c];
+        }
+        rep->chart_check_seconds = now_seconds() - t0;
+    }
+    free(q); free(flip); free(dirty); free(count);
+    return st;
+}
+
+neuv_status patchnet_segment_model(const neuv_mesh *m, const operators *ops, const patchnet_options *o,
+                                   int *face_chart, int *n_charts, float **vertex_features, int *feature_dim,
+                                   patchnet_report *rep, patchnet_model *model_out)
+{
+    double t0 = now_seconds();
+    patchnet_options def;
+    if (!o) { patchnet_default_options(&def); o = &def; }
+    if (vertex_features) *vertex_features = NULL;
+    if (feature_dim) *feature_dim = 0;
+    if (model_out) memset(model_out, 0, sizeof *model_out);
+    if (!m || !ops || m->nf < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: mesh has no faces");
+    patchnet_report local;
+    if (!rep) rep = &local;
+    memset(rep, 0, sizeof *rep);
+    int k = o->charts > 0 ? o->charts : (o->initial_charts > 0 ? o->initial_charts : 8);
+    if (k > m->nf) k = m->nf;
+    float *x = NULL;
+    int dim = 0;
+    neuv_status st = diffusion_net_input_features(m, ops, o->features, &x, &dim);
+    free(x);
+    if (st) return st;
+    patchnet_model model;
+    if ((st = patchnet_model_create(&model, o, dim, k))) return st;
+    int *label = malloc(sizeof(int) * (size_t)m->nf);
+    if (!label) { patchnet_model_free(&model); return neuv_fail_nomem("patch labels"); }
+    if ((st = patchnet_train(&model, m, ops, o, rep))) goto done;
+    if ((st = patchnet_infer_features(&model, m, ops, label, vertex_features, feature_dim))) goto done;
+    charts_options copt;
+    charts_default_options(&copt);
+    if (o->min_area_share > 0) copt.min_area_share = o->min_area_share;
+    if ((st = charts_from_labels(m, label, &copt, face_chart, n_charts, NULL))) goto done;
+    rep->label_charts = *n_charts;
+    if ((st = refine_charts(m, o, face_chart, n_charts, rep))) goto done;
+    rep->seconds = now_seconds() - t0;
+done:
+    free(label);
+    if (st && vertex_features) { free(*vertex_features); *vertex_features = NULL; }
+    if (!st && model_out) *model_out = model;
+    else patchnet_model_free(&model);
+    return st;
+}
+
+neuv_status patchnet_segment(const neuv_mesh *m, const operators *ops, const patchnet_options *o,
+                             int *face_chart, int *n_charts, float **vertex_features, int *feature_dim,
+                             patchnet_report *rep)
+{
+    return patchnet_segment_model(m, ops, o, face_chart, n_charts, vertex_features, feature_dim, rep, NULL);
+}

@@ -1,0 +1,169 @@
+#include "spatial/bvh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "spatial/triangle_closest_point.h"
+
+/* Faces per leaf: small leaves keep the triangle tests few per query. */
+#define BVH_LEAF 4
+/* Median splits halve the count, so depth stays below log2(F) + 2; a
+ * traversal stack holds at most one pending sibling per level. */
+#define BVH_STACK 128
+
+void bvh_free(bvh *b)
+{
+    free(b->nodes); free(b->face); free(b->corner);
+    memset(b, 0, sizeof *b);
+}
+
+/* Orders faces by centroid along `axis`, ties by face id, so the split is
+ * the same on every machine whatever the quickselect path. */
+static int face_less(const double *cen, int axis, int f, int g)
+{
+    double x = cen[3 * f + axis], y = cen[3 * g + axis];
+    return x < y || (x == y && f < g);
+}
+
+/* Partially orders ids[0..n) so ids[k] is the k-th smallest and everything
+ * before it is not larger (Hoare quickselect, median-of-three pivots). */
+static void select_kth(int *ids, int n, int k, const double *cen, int axis)
+{
+    int lo = 0, hi = n - 1;
+    while (hi > lo) {
+        int mid = lo + (hi - lo) / 2;
+        int a = ids[lo], b = ids[mid], c = ids[hi], piv;
+        if (face_less(cen, axis, a, b)) piv = face_less(cen, axis, b, c) ? b : (face_less(cen, axis, a, c) ? c : a);
+        else piv = face_less(cen, axis, a, c) ? a : (face_less(cen, axis, b, c) ? c : b);
+        int i = lo, j = hi;
+        while (i <= j) {
+            while (face_less(cen, axis, ids[i], piv)) i++;
+            while (face_less(cen, axis, piv, ids[j])) j--;
+            if (i <= j) { int t = ids[i]; ids[i] = ids[j]; ids[j] = t; i++; j--; }
+        }
+        if (k <= j) hi = j;
+        else if (k >= i) lo = i;
+        else return;
+    }
+}
+
+neuv_status bvh_build(bvh *b, const neuv_mesh *m)
+{
+    memset(b, 0, sizeof *b);
+    if (m->nf <= 0) return neuv_fail(NEUV_ERR_INPUT, "cannot build a BVH over a mesh without faces");
+    int nf = m->nf;
+    double *cen = malloc(sizeof(double) * 3 * (size_t)nf);
+    double *lo = malloc(sizeof(double) * 3 * (size_t)nf), *hi = malloc(sizeof(double) * 3 * (size_t)nf);
+    int *stack = malloc(sizeof(int) * 3 * (size_t)(2 * nf));
+    b->nodes = malloc(sizeof(bvh_node) * (size_t)(2 * nf));
+    b->face = malloc(sizeof(int) * (size_t)nf);
+    b->corner = malloc(sizeof(double) * 9 * (size_t)nf);
+    if (!cen || !lo || !hi || !stack || !b->nodes || !b->face || !b->corner) {
+        free(cen); free(lo); free(hi); free(stack); bvh_free(b);
+        return neuv_fail(NEUV_ERR_NOMEM, "out of memory building a BVH over %d faces", nf);
+    }
+    b->nf = nf;
+    for (int f = 0; f < nf; f++) {
+        b->face[f] = f;
+        for (int i = 0; i < 3; i++) {
+            double x0 = m->pos[3 * m->tri[3 * f] + i], x1 = m->pos[3 * m->tri[3 * f + 1] + i],
+                   x2 = m->pos[3 * m->tri[3 * f + 2] + i];
+            cen[3 * f + i] = (x0 + x1 + x2) / 3.0;
+            lo[3 * f + i] = fmin(x0, fmin(x1, x2));
+            hi[3 * f + i] = fmax(x0, fmax(x1, x2));
+        }
+    }
+    /* Work list of (node, start, count); children are allocated in pairs. */
+    int top = 0;
+    b->nnodes = 1;
+    stack[0] = 0; stack[1] = 0; stack[2] = nf; top = 1;
+    while (top > 0) {
+        top--;
+        int node = stack[3 * top], start = stack[3 * top + 1], count = stack[3 * top + 2];
+        bvh_node *nd = &b->nodes[node];
+        double clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int i = 0; i < 3; i++) { nd->lo[i] = INFINITY; nd->hi[i] = -INFINITY; }
+        for (int j = start; j < start + count; j++) {
+            int f = b->face[j];
+            for (int i = 0; i < 3; i++) {
+                nd->lo[i] = fmin(nd->lo[i], lo[3 * f + i]);
+                nd->hi[i] = fmax(nd->hi[i], hi[3 * f + i]);
+                clo[i] = fmin(clo[i], cen[3 * f + i]);
+                chi[i] = fmax(chi[i], cen[3 * f + i]);
+            }
+        }
+        nd->start = start; nd->count = count; nd->child = -1;
+        if (count <= BVH_LEAF) continue;
+        int axis = 0;
+        for (int i = 1; i < 3; i++)
+            if (chi[i] - clo[i] > chi[axis] - clo[axis]) axis = i;
+        int half = count / 2;
+        select_kth(b->face + start, count, half, cen, axis);
+        int c = b->nnodes;
+        b->nnodes += 2;
+        nd->child = c;
+        stack[3 * top] = c; stack[3 * top + 1] = start; stack[3 * top + 2] = half; top++;
+        stack[3 * top] = c + 1; stack[3 * top + 1] = start + half; stack[3 * top + 2] = count - half; top++;
+    }
+    for (int j = 0; j < nf; j++) {
+        int f = b->face[j];
+        for (int k = 0; k < 3; k++)
+            memcpy(b->corner + 9 * (size_t)j + 3 * k, m->pos + 3 * (size_t)m->tri[3 * f + k], sizeof(double) * 3);
+    }
+    free(cen); free(lo); free(hi); free(stack);
+    return NEUV_OK;
+}
+
+/* Squared distance from p to the box (0 inside). */
+static double box_dist2(const bvh_node *nd, const double p[3])
+{
+    double s = 0;
+    for (int i = 0; i < 3; i++) {
+        double d = p[i] < nd->lo[i] ? nd->lo[i] - p[i] : p[i] > nd->hi[i] ? p[i] - nd->hi[i] : 0;
+        s += d * d;
+    }
+    return s;
+}
+
+void bvh_closest_point(const bvh *b, const double point[3], int *face, double bary[3], double *dist2)
+{
+    double best = INFINITY, best_bary[3] = {1, 0, 0};
+    int best_j = 0;
+    int stack[BVH_STACK], top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const bvh_node *nd = &b->nodes[stack[--top]];
+        if (box_dist2(nd, point) > best) continue;
+        if (nd->child < 0) {
+            for (int j = nd->start; j < nd->start + nd->count; j++) {
+                const double *c = b->corner + 9 * (size_t)j;
+                double w[3];
+                double d = triangle_closest_point(c, c + 3, c + 6, point, w);
+                if (d < best) {
+                    best = d; best_j = j;
+                    best_bary[0] = w[0]; best_bary[1] = w[1]; best_bary[2] = w[2];
+                }
+            }
+            continue;
+        }
+        /* Visit the nearer child first so `best` shrinks early. */
+        int c0 = nd->child, c1 = nd->child + 1;
+        double d0 = box_dist2(&b->nodes[c0], point), d1 = box_dist2(&b->nodes[c1], point);
+        if (d0 > d1) { int t = c0; c0 = c1; c1 = t; double td = d0; d0 = d1; d1 = td; }
+        if (d1 <= best && top < BVH_STACK) stack[top++] = c1;
+        if (d0 <= best && top < BVH_STACK) stack[top++] = c0;
+    }
+    if (face) *face = b->face[best_j];
+    if (bary) { bary[0] = best_bary[0]; bary[1] = best_bary[1]; bary[2] = best_bary[2]; }
+    if (dist2) *dist2 = best;
+}
+
+void bvh_closest_points(const bvh *b, int n, const double *points, int *face, double *bary, double *dist2)
+{
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int i = 0; i < n; i++)
+        bvh_closest_point(b, points + 3 * (size_t)i, face ? face + i : NULL, bary ? bary + 3 * (size_t)i : NULL,
+                          dist2 ? dist2 + i : NULL);
+}

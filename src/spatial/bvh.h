@@ -1,0 +1,41 @@
+/* A bounding-volume hierarchy over a mesh's triangles for closest-point
+ * queries: axis-aligned boxes, median split of the face centroids along
+ * the longest axis, built without recursion. The same mesh always gives
+ * the same tree, so queries are deterministic. */
+#ifndef NEUV_SPATIAL_BVH_H
+#define NEUV_SPATIAL_BVH_H
+
+#include "mesh/mesh.h"
+
+typedef struct bvh_node {
+    double lo[3], hi[3];
+    int child;        /* internal: first child (the second is child + 1); leaf: -1 */
+    int start, count; /* leaf: range of faces in bvh.face */
+} bvh_node;
+
+typedef struct bvh {
+    int nf, nnodes;
+    bvh_node *nodes;  /* nodes[0] is the root */
+    int *face;        /* #F face ids in leaf order */
+    double *corner;   /* #F by 9: the triangle's three corners, in leaf order */
+} bvh;
+
+/* Builds the tree over all faces of m (copies the corners; m may be freed
+ * afterwards). O(F log F).
+ * Returns NEUV_OK, NEUV_ERR_NOMEM, or NEUV_ERR_INPUT for a mesh without faces. */
+neuv_status bvh_build(bvh *b, const neuv_mesh *m);
+void bvh_free(bvh *b);
+
+/* Closest point of the surface to `point`.
+ * Inputs: point (3).
+ * Outputs: face: the face holding it (ties: the one met first in the tree);
+ * bary (3) its barycentric weights in that face (corner order of m->tri);
+ * dist2: squared distance. Any output may be NULL. */
+void bvh_closest_point(const bvh *b, const double point[3], int *face, double bary[3], double *dist2);
+
+/* Many queries at once, in parallel over the points (OpenMP).
+ * Inputs: n points (#n by 3).
+ * Outputs: face (#n), bary (#n by 3), dist2 (#n); any may be NULL. */
+void bvh_closest_points(const bvh *b, int n, const double *points, int *face, double *bary, double *dist2);
+
+#endif
