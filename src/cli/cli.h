@@ -32,6 +32,10 @@ int cli_arg_double(int argc, char **argv, int *i, const char *name, double *out,
 /* Consumes the global flags (--quiet, --threads T) wherever they stand. */
 int cli_arg_global(int argc, char **argv, int *i, int *bad);
 
+/* Fails early (before long work) when the folder of `out` does not exist
+ * or `out` is a directory; returns 0 when it looks writable. */
+int cli_check_output_folder(const char *out);
+
 /* Refuses to write onto an input file; returns 0 when `out` is safe. */
 int cli_check_output_not_input(const char *out, const char *in);
 

@@ -162,3 +162,19 @@ int cli_check_output_not_input(const char *out, const char *in)
         return cli_error(out, "output would overwrite the input file");
     return 0;
 }
+
+int cli_check_output_folder(const char *out)
+{
+    struct stat st;
+    if (stat(out, &st) == 0 && S_ISDIR(st.st_mode)) return cli_error(out, "is a directory");
+    const char *slash = strrchr(out, '/');
+    if (!slash) return 0;
+    char dir[4096];
+    size_t n = slash == out ? 1 : (size_t)(slash - out);
+    if (n >= sizeof dir) return cli_error(out, "path too long");
+    memcpy(dir, out, n);
+    dir[n] = '\0';
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) return cli_error(out, "folder %s does not exist", dir);
+    if (access(dir, W_OK) != 0) return cli_error(out, "folder %s is not writable", dir);
+    return 0;
+}

@@ -13,6 +13,7 @@ typedef struct command {
 
 static const command commands[] = {
     /* Each command adds one line here, in the order of SPEC.md section 3. */
+    {"unwrap", cmd_unwrap, "unwrap IN [-o OUT] [--report R.json] [--preview PREFIX] [--method neural|lscm|harmonic] [--charts auto|K] [--preset fast|paper] [--iters N] [--seed S] [--threads T] [--resolution PX] [--padding PX] [--allow-overlaps] [--quiet]"},
     {"eval", cmd_eval, "eval IN_WITH_UV [--json] [--preview PREFIX] [--preview-color chart|qce|area]"},
     {"pack", cmd_pack, "pack IN_WITH_UV -o OUT [--resolution PX] [--padding PX] [--keep-scale] [--preview PREFIX]   repack the charts of any UV map"},
     {"info", cmd_info, "info IN [--json]   vertices, faces, components, boundaries, genus, repairs"},
@@ -21,6 +22,10 @@ static const command commands[] = {
     {"geodesics", cmd_geodesics, "geodesics IN --from V [--json]   heat-method distances from one vertex"},
     {"convert", cmd_convert, "convert IN -o OUT   (format by extension: .obj .ply .glb .gltf; UVs kept)"},
     {"inspect", cmd_inspect, "inspect M.neuv [--json]   a checkpoint's configuration and tensors"},
+    {"segment", cmd_segment, "segment IN -o OUT [--charts auto|K] [--max-distortion X] [--features hks|xyz] [--preset fast|paper] [--seed S] [--iters N] [--preview PREFIX] [--no-cache] [--json]   PatchNet chart id per face"},
+    {"demo", cmd_demo, "demo [-o DIR]   the whole pipeline on a built-in procedural shape"},
+    {"remesh", cmd_remesh, "remesh IN -o OUT (--simplify R | --subdivide N [--loop]) [--jitter] [--seed S]   another discretization of the same surface"},
+    {"compare", cmd_compare, "compare A_UV B_UV [--json]   UV consistency of two UV maps of the same surface"},
     {NULL, NULL, NULL},
 };
 

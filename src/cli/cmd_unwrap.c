@@ -1,0 +1,113 @@
+/* neuv unwrap IN [-o OUT] [--report R.json] [--preview PREFIX] [options] */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "atlas/preview.h"
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "cli/unwrap_job.h"
+#include "core/timer.h"
+
+static const char *usage_text =
+    "usage: neuv unwrap IN [-o OUT] [--report R.json] [--preview PREFIX] [--preview-color chart|qce|area]\n"
+    "                   [--method neural|lscm|harmonic] [--charts auto|K] [--max-distortion X]\n"
+    "                   [--preset fast|paper] [--iters N] [--seed S] [--threads T]\n"
+    "                   [--resolution PX] [--padding PX] [--allow-overlaps] [--no-cache] [--quiet]\n";
+
+/* Default output: the input's name without its folder and extension, plus "-uv.obj". */
+static char *default_output(const char *in)
+{
+    const char *base = strrchr(in, '/');
+    base = base ? base + 1 : in;
+    const char *dot = strrchr(base, '.');
+    size_t n = dot && dot != base ? (size_t)(dot - base) : strlen(base);
+    char *out = malloc(n + 8);
+    if (out) snprintf(out, n + 8, "%.*s-uv.obj", (int)n, base);
+    return out;
+}
+
+int parse_preview_color(const char *s, int *out)
+{
+    if (!strcmp(s, "chart")) *out = PREVIEW_COLOR_CHART;
+    else if (!strcmp(s, "qce")) *out = PREVIEW_COLOR_QCE;
+    else if (!strcmp(s, "area")) *out = PREVIEW_COLOR_AREA;
+    else return cli_error(NULL, "--preview-color expects chart, qce or area, got '%s'", s);
+    return 0;
+}
+
+int cmd_unwrap(int argc, char **argv)
+{
+    neuv_unwrap_options o;
+    neuv_unwrap_options_default(&o);
+    unwrap_job job = {0};
+    const char *in = NULL, *method = NULL, *charts = NULL, *preset = NULL, *color = NULL;
+    int seed = -1, bad = 0;
+    for (int i = 1; i < argc && !bad; i++) {
+        if (cli_arg_global(argc, argv, &i, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "-o", &job.output, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--report", &job.report, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--preview", &job.preview, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--preview-color", &color, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--method", &method, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--charts", &charts, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--preset", &preset, &bad)) continue;
+        if (cli_arg_double(argc, argv, &i, "--max-distortion", &o.max_distortion, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--iters", &o.iters, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--seed", &seed, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--resolution", &o.resolution, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--padding", &o.padding, &bad)) continue;
+        if (!strcmp(argv[i], "--allow-overlaps")) { o.allow_overlaps = 1; continue; }
+        if (!strcmp(argv[i], "--no-cache")) { o.use_cache = 0; continue; }
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) { fputs(usage_text, stdout); return 0; }
+        if (argv[i][0] == '-' && argv[i][1]) return cli_error(NULL, "unwrap: unknown option '%s'", argv[i]);
+        if (in) return cli_error(NULL, "unwrap takes one input file (got '%s' and '%s')", in, argv[i]);
+        in = argv[i];
+    }
+    if (bad) return 2;
+    if (!in) { fputs(usage_text, stderr); return 2; }
+    if (method) {
+        if (!strcmp(method, "neural")) o.method = NEUV_METHOD_NEURAL;
+        else if (!strcmp(method, "lscm")) o.method = NEUV_METHOD_LSCM;
+        else if (!strcmp(method, "harmonic")) o.method = NEUV_METHOD_HARMONIC;
+        else return cli_error(NULL, "--method expects neural, lscm or harmonic, got '%s'", method);
+    }
+    if (preset) {
+        if (!strcmp(preset, "fast")) o.preset = NEUV_PRESET_FAST;
+        else if (!strcmp(preset, "paper")) o.preset = NEUV_PRESET_PAPER;
+        else return cli_error(NULL, "--preset expects fast or paper, got '%s'", preset);
+    }
+    if (charts && strcmp(charts, "auto") != 0) {
+        char *end;
+        long k = strtol(charts, &end, 10);
+        if (*end || k < 1 || k > 4096) return cli_error(NULL, "--charts expects auto or a count in 1..4096, got '%s'", charts);
+        o.charts = (int)k;
+    }
+    if (o.max_distortion < 1.0) return cli_error(NULL, "--max-distortion must be at least 1");
+    if (o.iters < 0) return cli_error(NULL, "--iters must be positive");
+    if (seed >= 0) o.seed = (unsigned long long)seed;
+    else if (seed != -1) return cli_error(NULL, "--seed must be non-negative");
+    o.threads = cli_opts.threads;
+    if (color && parse_preview_color(color, &job.preview_color)) return 2;
+
+    char *owned_output = NULL;
+    if (!job.output) job.output = owned_output = default_output(in);
+    if (!job.output) return cli_error(in, "out of memory");
+    int rc = cli_check_output_not_input(job.output, in);
+    if (rc == 0) rc = cli_check_output_folder(job.output);
+    if (rc == 0 && job.report) rc = cli_check_output_not_input(job.report, in);
+    if (rc == 0 && job.report) rc = cli_check_output_folder(job.report);
+    if (rc == 0 && job.preview) rc = cli_check_output_folder(job.preview);
+    if (rc) { free(owned_output); return rc; }
+
+    double t = now_seconds();
+    neuv_mesh *mesh = NULL;
+    neuv_status s = neuv_mesh_load(in, &mesh);
+    if (s != NEUV_OK) { free(owned_output); return cli_fail(in, s); }
+    job.input_name = in;
+    job.load_seconds = now_seconds() - t;
+    rc = unwrap_job_run(mesh, &o, &job);
+    neuv_mesh_free(mesh);
+    free(owned_output);
+    return rc;
+}

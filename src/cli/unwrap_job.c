@@ -1,0 +1,52 @@
+#include "cli/unwrap_job.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "atlas/preview.h"
+#include "cli/cli.h"
+#include "core/atomic_file.h"
+#include "core/timer.h"
+#include "unwrap/unwrap_internal.h"
+
+static int write_text(const char *path, const char *text)
+{
+    atomic_file af;
+    neuv_status s = atomic_file_open(&af, path);
+    if (s != NEUV_OK) return cli_fail(path, s);
+    fputs(text, af.fp);
+    fputc('\n', af.fp);
+    s = atomic_file_commit(&af);
+    return s == NEUV_OK ? 0 : cli_fail(path, s);
+}
+
+int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const unwrap_job *job)
+{
+    neuv_unwrap_result *r = NULL;
+    neuv_status s = neuv_unwrap(mesh, opts, &r);
+    if (s != NEUV_OK) return cli_fail(job->input_name, s);
+
+    double t = now_seconds();
+    s = neuv_mesh_save(neuv_unwrap_mesh(r), job->output);
+    double export_seconds = now_seconds() - t;
+    if (s != NEUV_OK) { neuv_unwrap_result_free(r); return cli_fail(job->output, s); }
+
+    int rc = 0;
+    char *json = neuv_unwrap_report_json(r, job->input_name, job->load_seconds, export_seconds);
+    if (!json) rc = cli_error(job->input_name, "out of memory writing the report");
+    if (rc == 0 && job->report) rc = write_text(job->report, json);
+    if (rc == 0 && job->preview) {
+        s = preview_write(neuv_unwrap_mesh(r), job->preview, (preview_color)job->preview_color);
+        if (s != NEUV_OK) rc = cli_fail(job->preview, s);
+    }
+    if (rc == 0 && !cli_opts.quiet) {
+        const uv_metrics *mt = &r->metrics;
+        printf("%s: %d charts, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f, %.1f s -> %s\n",
+               job->input_name, r->n_charts, mt->qce_mean, mt->flipped, mt->overlap_fraction,
+               mt->packing_efficiency, job->load_seconds + r->total_seconds + export_seconds, job->output);
+        if (r->n_repairs > 0) printf("  %d repairs (listed in the report)\n", r->n_repairs);
+    }
+    free(json);
+    neuv_unwrap_result_free(r);
+    return rc;
+}

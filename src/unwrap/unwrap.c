@@ -1,0 +1,340 @@
+/* `neuv unwrap`: clean → operators → PatchNet charts → parameterization →
+ * repair → pack → metrics. Each stage is timed; every repair is recorded. */
+#include "unwrap/unwrap_internal.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "charts/charts.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "core/timer.h"
+#include "flatten/harmonic.h"
+#include "flatten/lscm.h"
+#include "geometry/operator_cache.h"
+#include "geometry/operators.h"
+#include "models/param_net.h"
+#include "models/patchnet.h"
+#include "nn/nn.h"
+#include "unwrap/chart_uv_check.h"
+
+void neuv_unwrap_options_default(neuv_unwrap_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->method = NEUV_METHOD_NEURAL;
+    o->preset = NEUV_PRESET_FAST;
+    o->charts = 0;
+    o->max_distortion = 1.15;
+    o->seed = 1;
+    o->resolution = 1024;
+    o->padding = 2;
+    o->use_cache = 1;
+}
+
+void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt, ...)
+{
+    if (r->n_repairs == r->cap_repairs) {
+        int cap = r->cap_repairs ? 2 * r->cap_repairs : 16;
+        unwrap_repair *nr = realloc(r->repairs, sizeof *nr * (size_t)cap);
+        if (!nr) return;
+        r->repairs = nr;
+        r->cap_repairs = cap;
+    }
+    unwrap_repair *rep = &r->repairs[r->n_repairs++];
+    rep->chart = chart;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(rep->what, sizeof rep->what, fmt, ap);
+    va_end(ap);
+    neuv_log(NEUV_LOG_DEBUG, "repair: chart %d: %s", chart, rep->what);
+}
+
+/* One chart during the repair stage: its own mesh and per-vertex UVs. */
+typedef struct chart_piece {
+    neuv_mesh *sub;
+    int *vmap, *fmap;
+    double *uv;      /* #CV by 2 */
+    int from_split;  /* made by a split: flattened by the classic method */
+} chart_piece;
+
+static void piece_clear(chart_piece *p)
+{
+    mesh_free(p->sub);
+    free(p->vmap);
+    free(p->fmap);
+    free(p->uv);
+    memset(p, 0, sizeof *p);
+}
+
+static neuv_status piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p)
+{
+    int from_split = p->from_split;
+    piece_clear(p);
+    p->from_split = from_split;
+    neuv_status s = chart_submesh(m, face_chart, id, &p->sub, &p->vmap, &p->fmap);
+    if (s != NEUV_OK) return s;
+    p->uv = calloc((size_t)p->sub->nv * 2, sizeof(double));
+    return p->uv ? NEUV_OK : neuv_fail_nomem("chart UVs");
+}
+
+static const char *classic_name(neuv_method method)
+{
+    return method == NEUV_METHOD_HARMONIC ? "harmonic" : "LSCM";
+}
+
+static neuv_status flatten_classic(neuv_method method, const chart_piece *p)
+{
+    return method == NEUV_METHOD_HARMONIC ? harmonic(p->sub, p->uv) : lscm(p->sub, p->uv);
+}
+
+/* Copies the network's per-corner UVs of the chart's faces to its vertices. */
+static void piece_uv_from_corners(chart_piece *p, const double *corner_uv)
+{
+    for (int lf = 0; lf < p->sub->nf; lf++)
+        for (int k = 0; k < 3; k++) {
+            int lv = p->sub->tri[3 * lf + k];
+            const double *c = corner_uv + 2 * (3 * (size_t)p->fmap[lf] + k);
+            p->uv[2 * lv] = c[0];
+            p->uv[2 * lv + 1] = c[1];
+        }
+}
+
+static void describe_failure(char *buf, size_t n, const chart_uv_check *c)
+{
+    snprintf(buf, n, "%d flipped, %d degenerate faces, %d boundary crossings", c->flipped, c->degenerate,
+             c->boundary_crossings);
+}
+
+static int grow_pieces(chart_piece **pieces, int *cap, int need)
+{
+    if (need <= *cap) return 0;
+    int nc = *cap ? *cap : 16;
+    while (nc < need) nc *= 2;
+    chart_piece *np = realloc(*pieces, sizeof *np * (size_t)nc);
+    if (!np) return -1;
+    memset(np + *cap, 0, sizeof *np * (size_t)(nc - *cap));
+    *pieces = np;
+    *cap = nc;
+    return 0;
+}
+
+/* The repair stage: every chart ends with an injective map (no flipped or
+ * degenerate face, simple boundary). A folded neural chart is re-flattened
+ * with LSCM; a chart the classic method cannot flatten without folds is
+ * split in two and both halves are flattened again. */
+static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m, const double *corner_uv,
+                                      chart_piece **pieces_out, int *cap_out)
+{
+    neuv_method classic = r->opts.method == NEUV_METHOD_HARMONIC ? NEUV_METHOD_HARMONIC : NEUV_METHOD_LSCM;
+    chart_piece *pieces = NULL;
+    int cap = 0;
+    neuv_status s = NEUV_OK;
+    int splits = 0;
+    for (int c = 0; c < r->n_charts; c++) {
+        if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = neuv_fail_nomem("charts"); break; }
+        chart_piece *p = &pieces[c];
+        if ((s = piece_build(m, r->face_chart, c, p)) != NEUV_OK) break;
+        neuv_progress("repair", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
+        chart_uv_check chk;
+        char why[160];
+        if (corner_uv && !p->from_split) {
+            piece_uv_from_corners(p, corner_uv);
+            int ok = chart_uv_check_run(p->sub, p->uv, &chk);
+            if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
+            if (ok || r->opts.allow_overlaps) { r->neural_charts++; continue; }
+            describe_failure(why, sizeof why, &chk);
+            unwrap_add_repair(r, c, "neural map folded (%s); re-flattened with LSCM", why);
+        }
+        s = flatten_classic(corner_uv ? NEUV_METHOD_LSCM : classic, p);
+        if (s != NEUV_OK) break;
+        int ok = chart_uv_check_run(p->sub, p->uv, &chk);
+        if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
+        if (ok || r->opts.allow_overlaps) continue;
+        if (p->sub->nf < 2 || splits >= m->nf) {
+            s = neuv_fail(NEUV_ERR_INTERNAL, "chart %d cannot be flattened without folds", c);
+            break;
+        }
+        describe_failure(why, sizeof why, &chk);
+        int before = r->n_charts;
+        s = charts_split(m, r->face_chart, &r->n_charts, c);
+        if (s != NEUV_OK) break;
+        splits++;
+        unwrap_add_repair(r, c, "%s map folded (%s); split into %d charts and re-flattened",
+                          classic_name(corner_uv ? NEUV_METHOD_LSCM : classic), why, r->n_charts - before + 1);
+        if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = neuv_fail_nomem("charts"); break; }
+        for (int k = before; k < r->n_charts; k++) pieces[k].from_split = 1;
+        p->from_split = 1;
+        c--; /* flatten the smaller chart that kept this id again */
+    }
+    *pieces_out = pieces;
+    *cap_out = cap;
+    return s;
+}
+
+/* Per-corner UVs of the whole mesh from the charts' per-vertex UVs: a mesh
+ * vertex gets one UV per chart it belongs to (split at seams). */
+static neuv_status assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_charts)
+{
+    int nuv = 0;
+    for (int c = 0; c < n_charts; c++) nuv += pieces[c].sub->nv;
+    double *uv = malloc(sizeof(double) * 2 * (size_t)nuv);
+    int *tri_uv = malloc(sizeof(int) * 3 * (size_t)m->nf);
+    if (!uv || !tri_uv) { free(uv); free(tri_uv); return neuv_fail_nomem("UVs"); }
+    int base = 0;
+    neuv_status s = NEUV_OK;
+    for (int c = 0; c < n_charts && s == NEUV_OK; c++) {
+        const chart_piece *p = &pieces[c];
+        memcpy(uv + 2 * base, p->uv, sizeof(double) * 2 * (size_t)p->sub->nv);
+        for (int lf = 0; lf < p->sub->nf; lf++)
+            for (int k = 0; k < 3; k++) {
+                int f = p->fmap[lf], lv = p->sub->tri[3 * lf + k];
+                if (p->vmap[lv] != m->tri[3 * f + k]) {
+                    s = neuv_fail(NEUV_ERR_INTERNAL, "chart %d: corner order differs from the mesh", c);
+                    break;
+                }
+                tri_uv[3 * f + k] = base + lv;
+            }
+        base += p->sub->nv;
+    }
+    if (s == NEUV_OK) s = mesh_set_uv(m, nuv, uv, tri_uv);
+    free(uv);
+    free(tri_uv);
+    return s;
+}
+
+static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in)
+{
+    const neuv_unwrap_options *o = &r->opts;
+    double t = now_seconds(), t_start = t;
+    neuv_status s;
+
+    neuv_mesh *m = mesh_clone(in);
+    if (!m) return neuv_fail_nomem("the mesh");
+    r->mesh = m;
+    r->input_vertices = in->nv;
+    r->input_faces = in->nf;
+    mesh_set_uv(m, 0, NULL, NULL);
+    if ((s = mesh_clean(m, NULL, &r->clean)) != NEUV_OK) return s;
+    if (m->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
+    if (!(mesh_total_area(m) > 0)) return neuv_fail(NEUV_ERR_INPUT, "the mesh has zero area");
+    r->seconds[STAGE_CLEAN] = now_seconds() - t;
+
+    t = now_seconds();
+    neuv_progress("operators", 0, NULL);
+    operators ops;
+    memset(&ops, 0, sizeof ops);
+    operators_params op = operators_default_params();
+    s = operators_get(m, &op, o->use_cache, &ops, NULL, &r->cache_hit);
+    r->seconds[STAGE_OPERATORS] = now_seconds() - t;
+    if (s != NEUV_OK) return s;
+
+    t = now_seconds();
+    r->face_chart = malloc(sizeof(int) * (size_t)m->nf);
+    if (!r->face_chart) { operators_free(&ops); return neuv_fail_nomem("charts"); }
+    patchnet_options po;
+    patchnet_default_options(&po);
+    if (o->preset == NEUV_PRESET_PAPER) patchnet_apply_preset(&po, "paper");
+    po.charts = o->charts;
+    po.max_distortion = o->max_distortion;
+    po.seed = o->seed;
+    if (o->iters > 0) po.iters = o->iters;
+    float *features = NULL;
+    int feature_dim = 0;
+    patchnet_report prep;
+    memset(&prep, 0, sizeof prep);
+    s = patchnet_segment(m, &ops, &po, r->face_chart, &r->n_charts, &features, &feature_dim, &prep);
+    operators_free(&ops);
+    r->seconds[STAGE_PATCHES] = now_seconds() - t;
+    r->patches = prep.k;
+    r->patch_iterations = prep.iterations;
+    r->patch_iters_per_second = prep.iters_per_second;
+    if (s != NEUV_OK) { free(features); return s; }
+
+    double *corner_uv = NULL;
+    t = now_seconds();
+    if (o->method == NEUV_METHOD_NEURAL) {
+        corner_uv = malloc(sizeof(double) * 6 * (size_t)m->nf);
+        if (!corner_uv) { free(features); return neuv_fail_nomem("UVs"); }
+        param_net_options pp;
+        param_net_default_options(&pp, o->preset == NEUV_PRESET_PAPER ? PARAM_PRESET_PAPER : PARAM_PRESET_FAST);
+        pp.seed = o->seed;
+        if (o->iters > 0) pp.iters = o->iters;
+        param_net_report pr;
+        memset(&pr, 0, sizeof pr);
+        s = param_net_flatten(m, r->face_chart, r->n_charts, features, feature_dim, &pp, corner_uv, &pr);
+        r->param_iterations = pr.iters;
+        r->param_loss = pr.loss;
+    }
+    free(features);
+    r->seconds[STAGE_PARAM] = now_seconds() - t;
+    if (s != NEUV_OK) { free(corner_uv); return s; }
+
+    t = now_seconds();
+    chart_piece *pieces = NULL;
+    int cap = 0;
+    s = flatten_and_repair(r, m, corner_uv, &pieces, &cap);
+    free(corner_uv);
+    if (s == NEUV_OK) s = assemble_uvs(m, pieces, r->n_charts);
+    for (int c = 0; c < cap; c++) piece_clear(&pieces[c]);
+    free(pieces);
+    r->seconds[STAGE_REPAIR] = now_seconds() - t;
+    if (s != NEUV_OK) return s;
+
+    t = now_seconds();
+    neuv_progress("pack", 0, "%d charts", r->n_charts);
+    r->transforms = calloc((size_t)r->n_charts, sizeof *r->transforms);
+    if (!r->transforms) return neuv_fail_nomem("chart transforms");
+    atlas_pack_options pk;
+    atlas_pack_options_default(&pk);
+    pk.resolution = o->resolution;
+    pk.padding = o->padding;
+    s = atlas_pack(m, r->face_chart, r->n_charts, &pk, r->transforms, &r->pack);
+    r->seconds[STAGE_PACK] = now_seconds() - t;
+    if (s != NEUV_OK) return s;
+
+    /* The metrics of the mesh as `neuv eval` will read it back (positions welded). */
+    t = now_seconds();
+    neuv_mesh *welded = mesh_clone(m);
+    if (!welded) return neuv_fail_nomem("the metrics");
+    if (mesh_weld_positions(welded) < 0) { mesh_free(welded); return neuv_fail_nomem("the metrics"); }
+    s = uv_metrics_compute(welded, &r->metrics);
+    mesh_free(welded);
+    r->seconds[STAGE_METRICS] = now_seconds() - t;
+    r->total_seconds = now_seconds() - t_start;
+    return s;
+}
+
+neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, neuv_unwrap_result **out)
+{
+    *out = NULL;
+    if (!mesh || mesh->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
+    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
+    if (!r) return neuv_fail_nomem("the result");
+    if (opts) r->opts = *opts;
+    else neuv_unwrap_options_default(&r->opts);
+    if (r->opts.resolution < 64 || r->opts.resolution > 16384)
+        { free(r); return neuv_fail(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
+    if (r->opts.padding < 0 || r->opts.padding > r->opts.resolution / 8)
+        { free(r); return neuv_fail(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
+    if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
+    neuv_status s = run_pipeline(r, mesh);
+    if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
+    *out = r;
+    return NEUV_OK;
+}
+
+const neuv_mesh *neuv_unwrap_mesh(const neuv_unwrap_result *r) { return r ? r->mesh : NULL; }
+int neuv_unwrap_chart_count(const neuv_unwrap_result *r) { return r ? r->n_charts : 0; }
+
+void neuv_unwrap_result_free(neuv_unwrap_result *r)
+{
+    if (!r) return;
+    mesh_free(r->mesh);
+    free(r->face_chart);
+    free(r->transforms);
+    free(r->repairs);
+    free(r);
+}

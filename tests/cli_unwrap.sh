@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# neuv unwrap and neuv demo end to end: zero flips and overlaps, UVs in [0,1]^2,
+# the report's metrics equal `neuv eval` on the written file, deterministic bytes,
+# bad options exit 2 with one line.
+set -u
+NEUV="$1"
+TMP="${NEUV_TEST_TMP:-/tmp}/cli_unwrap"
+rm -rf "$TMP"; mkdir -p "$TMP"
+pass=0; fail=0
+ok()  { pass=$((pass+1)); }
+bad() { fail=$((fail+1)); echo "FAIL: $*" >&2; }
+PY=/usr/bin/python3; [ -x "$PY" ] || PY=python3
+
+# Compares the report with `neuv eval --json` of the output and checks the guarantees.
+check_outputs() { # obj report label
+  "$NEUV" eval "$1" --json > "$TMP/eval.json" 2>"$TMP/eval.err" || { bad "$3: eval failed: $(cat "$TMP/eval.err")"; return; }
+  "$PY" - "$2" "$TMP/eval.json" "$1" <<'PYEOF' && ok || bad "$3: report/eval mismatch or guarantee broken"
+import json, sys
+rep = json.load(open(sys.argv[1])); ev = json.load(open(sys.argv[2]))
+m, e = rep["metrics"], ev["metrics"]
+for k in ("version", "input", "vertices", "faces", "method", "seed", "charts", "seconds", "metrics"):
+    assert k in rep, k
+for k in ("load", "operators", "patches", "param", "pack", "export", "total"):
+    assert k in rep["seconds"], k
+for k, v in e.items():
+    if v is None: assert m.get(k) is None, k; continue
+    assert abs(m[k] - v) <= 1e-9 * max(1.0, abs(v)), (k, m[k], v)
+assert e["flipped"] == 0 and e["overlap_fraction"] == 0, e
+assert e["packing_efficiency"] is not None and e["packing_efficiency"] > 0.3, e
+assert rep["charts"] == e["charts"], (rep["charts"], e["charts"])
+uv = [list(map(float, l.split()[1:3])) for l in open(sys.argv[3]) if l.startswith("vt ")]
+assert uv and all(0 <= a <= 1 and 0 <= b <= 1 for a, b in uv)
+PYEOF
+}
+
+# The demo: the full pipeline on a built-in genus-2 surface.
+if "$NEUV" demo -o "$TMP/demo" --quiet; then ok; else bad "demo failed"; fi
+for f in demo.obj report.json demo-uv.png demo-checker.png; do
+  [ -s "$TMP/demo/$f" ] && ok || bad "demo did not write $f"
+done
+[ -s "$TMP/demo/demo.obj" ] && check_outputs "$TMP/demo/demo.obj" "$TMP/demo/report.json" demo
+
+# Determinism: same input, seed and threads -> same bytes; each method on the same mesh.
+IN="$TMP/demo/demo-input.obj"
+for method in neural lscm harmonic; do
+  "$NEUV" unwrap "$IN" -o "$TMP/a-$method.obj" --report "$TMP/a-$method.json" --method $method --seed 3 --threads 1 --quiet \
+    && ok || bad "unwrap --method $method failed"
+  [ -s "$TMP/a-$method.obj" ] && check_outputs "$TMP/a-$method.obj" "$TMP/a-$method.json" "$method"
+done
+"$NEUV" unwrap "$IN" -o "$TMP/b-neural.obj" --seed 3 --threads 1 --quiet && ok || bad "second unwrap failed"
+cmp -s "$TMP/a-neural.obj" "$TMP/b-neural.obj" && ok || bad "same seed and threads gave different bytes"
+
+# A real mesh, when ../shared is there.
+if [ -n "${NEUV_SHARED:-}" ] && [ -f "$NEUV_SHARED/meshes/woody.obj" ]; then
+  "$NEUV" unwrap "$NEUV_SHARED/meshes/woody.obj" -o "$TMP/woody.glb" --report "$TMP/woody.json" --quiet \
+    && ok || bad "unwrap woody.obj to GLB failed"
+  "$NEUV" unwrap "$NEUV_SHARED/meshes/woody.obj" -o "$TMP/woody.obj" --report "$TMP/woody2.json" --quiet \
+    && check_outputs "$TMP/woody.obj" "$TMP/woody2.json" woody || bad "unwrap woody.obj failed"
+else
+  echo "skip: ../shared/meshes not found, real-mesh case not run"
+fi
+
+# Bad options and inputs: exit 2, one line, no output left behind.
+expect_2() { # label, then the command
+  local label="$1"; shift
+  "$@" >/dev/null 2>"$TMP/err"; local rc=$?
+  if [ $rc -eq 2 ] && [ "$(wc -l < "$TMP/err")" -eq 1 ] && grep -q "^neuv: error: " "$TMP/err"; then ok
+  else bad "$label: rc=$rc stderr=$(cat "$TMP/err")"; fi
+}
+expect_2 "unknown method" "$NEUV" unwrap "$IN" -o "$TMP/x.obj" --method magic
+expect_2 "bad charts" "$NEUV" unwrap "$IN" -o "$TMP/x.obj" --charts zero
+expect_2 "bad preset" "$NEUV" unwrap "$IN" -o "$TMP/x.obj" --preset slow
+expect_2 "missing input" "$NEUV" unwrap "$TMP/nope.obj" -o "$TMP/x.obj"
+expect_2 "missing folder" "$NEUV" unwrap "$IN" -o "$TMP/no/such/dir/x.obj" --method lscm
+expect_2 "overwrite input" "$NEUV" unwrap "$IN" -o "$IN"
+[ ! -e "$TMP/x.obj" ] && ok || bad "a failed unwrap left $TMP/x.obj"
+
+echo "cli_unwrap: $pass passed, $fail failed"
+[ $fail -eq 0 ]
