@@ -105,13 +105,13 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     bvh_closest_points(&tree, nw, pts, face, bary, d2);
     dist = malloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
     if (!dist) goto nomem;
-    double sum = 0;
-#pragma omp parallel for schedule(dynamic, 256) reduction(+ : sum)
-    for (int w = 0; w < nw; w++) {
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int w = 0; w < nw; w++)
         dist[w] = uv_distance_at(a, vf_start, vf, face[w], bary + 3 * (size_t)w, pts + 3 * (size_t)w, d2[w],
                                  b->uv + 2 * (size_t)wu[w]);
-        sum += dist[w];
-    }
+    /* Summed in one order, so the mean does not depend on the threads. */
+    double sum = 0;
+    for (int w = 0; w < nw; w++) sum += dist[w];
     for (int w = 0; w < nw; w++) res->max_surface_distance = fmax(res->max_surface_distance, sqrt(d2[w]));
     qsort(dist, (size_t)nw, sizeof(double), cmp_double);
     res->vertices_compared = nw;

@@ -9,9 +9,10 @@
 
 /* Faces per leaf: small leaves keep the triangle tests few per query. */
 #define BVH_LEAF 4
-/* Median splits halve the count, so depth stays below log2(F) + 2; a
- * traversal stack holds at most one pending sibling per level. */
+/* A traversal stack holds at most one pending sibling per level plus the
+ * node in hand; the build caps the depth below this. */
 #define BVH_STACK 128
+#define BVH_SAH_DEPTH 64
 
 void bvh_free(bvh *b)
 {
@@ -49,6 +50,72 @@ static void select_kth(int *ids, int n, int k, const double *cen, int axis)
     }
 }
 
+/* Binned surface-area heuristic (Wald, "On fast construction of SAH-based
+ * bounding volume hierarchies", 2007): the plane between centroid bins
+ * that minimizes area(left) * #left + area(right) * #right. Reorders ids
+ * so the left side comes first and returns its size (0: no plane found). */
+#define BVH_BINS 16
+static double box_area(const double lo[3], const double hi[3])
+{
+    double d[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+    return 2 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+}
+
+static int bin_of(double x, double lo, double ext)
+{
+    int k = (int)((x - lo) / ext * BVH_BINS);
+    return k < 0 ? 0 : k >= BVH_BINS ? BVH_BINS - 1 : k;
+}
+
+static int sah_split(int *ids, int n, const double *cen, const double *flo, const double *fhi, const double clo[3],
+                     const double chi[3])
+{
+    double best = INFINITY;
+    int best_axis = -1, best_bin = 0;
+    for (int axis = 0; axis < 3; axis++) {
+        double ext = chi[axis] - clo[axis];
+        if (!(ext > 0)) continue;
+        int cnt[BVH_BINS] = {0};
+        double blo[BVH_BINS][3], bhi[BVH_BINS][3];
+        for (int k = 0; k < BVH_BINS; k++)
+            for (int i = 0; i < 3; i++) { blo[k][i] = INFINITY; bhi[k][i] = -INFINITY; }
+        for (int j = 0; j < n; j++) {
+            int f = ids[j], k = bin_of(cen[3 * f + axis], clo[axis], ext);
+            cnt[k]++;
+            for (int i = 0; i < 3; i++) {
+                blo[k][i] = fmin(blo[k][i], flo[3 * f + i]);
+                bhi[k][i] = fmax(bhi[k][i], fhi[3 * f + i]);
+            }
+        }
+        /* Right-side areas and counts by suffix, then sweep from the left. */
+        double rarea[BVH_BINS], rl[3] = {INFINITY, INFINITY, INFINITY}, rh[3] = {-INFINITY, -INFINITY, -INFINITY};
+        int rcnt[BVH_BINS], rc = 0;
+        for (int k = BVH_BINS - 1; k > 0; k--) {
+            rc += cnt[k];
+            for (int i = 0; i < 3; i++) { rl[i] = fmin(rl[i], blo[k][i]); rh[i] = fmax(rh[i], bhi[k][i]); }
+            rcnt[k] = rc;
+            rarea[k] = rc ? box_area(rl, rh) : 0;
+        }
+        double ll[3] = {INFINITY, INFINITY, INFINITY}, lh[3] = {-INFINITY, -INFINITY, -INFINITY};
+        int lc = 0;
+        for (int k = 1; k < BVH_BINS; k++) {
+            lc += cnt[k - 1];
+            for (int i = 0; i < 3; i++) { ll[i] = fmin(ll[i], blo[k - 1][i]); lh[i] = fmax(lh[i], bhi[k - 1][i]); }
+            if (lc == 0 || rcnt[k] == 0) continue;
+            double cost = box_area(ll, lh) * lc + rarea[k] * rcnt[k];
+            if (cost < best) { best = cost; best_axis = axis; best_bin = k; }
+        }
+    }
+    if (best_axis < 0) return 0;
+    double ext = chi[best_axis] - clo[best_axis];
+    int i = 0, j = n - 1;
+    while (i <= j) {
+        if (bin_of(cen[3 * ids[i] + best_axis], clo[best_axis], ext) < best_bin) i++;
+        else { int t = ids[i]; ids[i] = ids[j]; ids[j] = t; j--; }
+    }
+    return i;
+}
+
 neuv_status bvh_build(bvh *b, const neuv_mesh *m)
 {
     memset(b, 0, sizeof *b);
@@ -56,7 +123,7 @@ neuv_status bvh_build(bvh *b, const neuv_mesh *m)
     int nf = m->nf;
     double *cen = malloc(sizeof(double) * 3 * (size_t)nf);
     double *lo = malloc(sizeof(double) * 3 * (size_t)nf), *hi = malloc(sizeof(double) * 3 * (size_t)nf);
-    int *stack = malloc(sizeof(int) * 3 * (size_t)(2 * nf));
+    int *stack = malloc(sizeof(int) * 4 * (size_t)(2 * nf));
     b->nodes = malloc(sizeof(bvh_node) * (size_t)(2 * nf));
     b->face = malloc(sizeof(int) * (size_t)nf);
     b->corner = malloc(sizeof(double) * 9 * (size_t)nf);
@@ -78,10 +145,10 @@ neuv_status bvh_build(bvh *b, const neuv_mesh *m)
     /* Work list of (node, start, count); children are allocated in pairs. */
     int top = 0;
     b->nnodes = 1;
-    stack[0] = 0; stack[1] = 0; stack[2] = nf; top = 1;
+    stack[0] = 0; stack[1] = 0; stack[2] = nf; stack[3] = 0; top = 1;
     while (top > 0) {
         top--;
-        int node = stack[3 * top], start = stack[3 * top + 1], count = stack[3 * top + 2];
+        int node = stack[4 * top], start = stack[4 * top + 1], count = stack[4 * top + 2], depth = stack[4 * top + 3];
         bvh_node *nd = &b->nodes[node];
         double clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
         for (int i = 0; i < 3; i++) { nd->lo[i] = INFINITY; nd->hi[i] = -INFINITY; }
@@ -96,16 +163,23 @@ neuv_status bvh_build(bvh *b, const neuv_mesh *m)
         }
         nd->start = start; nd->count = count; nd->child = -1;
         if (count <= BVH_LEAF) continue;
-        int axis = 0;
-        for (int i = 1; i < 3; i++)
-            if (chi[i] - clo[i] > chi[axis] - clo[axis]) axis = i;
-        int half = count / 2;
-        select_kth(b->face + start, count, half, cen, axis);
+        /* Past BVH_SAH_DEPTH only halving splits, so the depth (and the
+         * query stack) stays below BVH_SAH_DEPTH + log2(F) + 1. */
+        int half = depth < BVH_SAH_DEPTH ? sah_split(b->face + start, count, cen, lo, hi, clo, chi) : 0;
+        if (half <= 0 || half >= count) {
+            /* No useful SAH plane (coincident centroids): halve by count. */
+            int axis = 0;
+            for (int i = 1; i < 3; i++)
+                if (chi[i] - clo[i] > chi[axis] - clo[axis]) axis = i;
+            half = count / 2;
+            select_kth(b->face + start, count, half, cen, axis);
+        }
         int c = b->nnodes;
         b->nnodes += 2;
         nd->child = c;
-        stack[3 * top] = c; stack[3 * top + 1] = start; stack[3 * top + 2] = half; top++;
-        stack[3 * top] = c + 1; stack[3 * top + 1] = start + half; stack[3 * top + 2] = count - half; top++;
+        stack[4 * top] = c; stack[4 * top + 1] = start; stack[4 * top + 2] = half; stack[4 * top + 3] = depth + 1; top++;
+        stack[4 * top] = c + 1; stack[4 * top + 1] = start + half; stack[4 * top + 2] = count - half;
+        stack[4 * top + 3] = depth + 1; top++;
     }
     for (int j = 0; j < nf; j++) {
         int f = b->face[j];
@@ -132,10 +206,12 @@ void bvh_closest_point(const bvh *b, const double point[3], int *face, double ba
     double best = INFINITY, best_bary[3] = {1, 0, 0};
     int best_j = 0;
     int stack[BVH_STACK], top = 0;
-    stack[top++] = 0;
+    double sdist[BVH_STACK];
+    stack[top] = 0; sdist[top] = box_dist2(&b->nodes[0], point); top++;
     while (top > 0) {
-        const bvh_node *nd = &b->nodes[stack[--top]];
-        if (box_dist2(nd, point) > best) continue;
+        top--;
+        if (sdist[top] > best) continue;
+        const bvh_node *nd = &b->nodes[stack[top]];
         if (nd->child < 0) {
             for (int j = nd->start; j < nd->start + nd->count; j++) {
                 const double *c = b->corner + 9 * (size_t)j;
@@ -152,8 +228,8 @@ void bvh_closest_point(const bvh *b, const double point[3], int *face, double ba
         int c0 = nd->child, c1 = nd->child + 1;
         double d0 = box_dist2(&b->nodes[c0], point), d1 = box_dist2(&b->nodes[c1], point);
         if (d0 > d1) { int t = c0; c0 = c1; c1 = t; double td = d0; d0 = d1; d1 = td; }
-        if (d1 <= best && top < BVH_STACK) stack[top++] = c1;
-        if (d0 <= best && top < BVH_STACK) stack[top++] = c0;
+        if (d1 <= best) { stack[top] = c1; sdist[top] = d1; top++; }
+        if (d0 <= best) { stack[top] = c0; sdist[top] = d0; top++; }
     }
     if (face) *face = b->face[best_j];
     if (bary) { bary[0] = best_bary[0]; bary[1] = best_bary[1]; bary[2] = best_bary[2]; }

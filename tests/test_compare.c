@@ -1,0 +1,109 @@
+/* UV comparison: a map against itself, against its midpoint subdivision,
+ * against a shifted copy, and against maps whose charts differ. */
+#include "check.h"
+#include "compare/uv_compare.h"
+#include "mesh/shapes.h"
+#include "remesh/jitter.h"
+#include "remesh/subdivide.h"
+
+/* A bumpy grid over [0,1]² whose UVs form two islands split at x = cut:
+ * left faces keep (x, y), right faces are shifted by +dx in u. */
+static neuv_mesh *two_chart_grid(int n, double cut, double dx)
+{
+    neuv_mesh *g = shape_grid(n, n, 1, 1, 0);
+    for (int v = 0; v < g->nv; v++) g->pos[3 * v + 2] = 0.1 * sin(4 * g->pos[3 * v]) * cos(3 * g->pos[3 * v + 1]);
+    double *uv = malloc(sizeof(double) * 6 * g->nf);
+    int *tuv = malloc(sizeof(int) * 3 * g->nf);
+    for (int f = 0; f < g->nf; f++) {
+        double cx = 0;
+        for (int k = 0; k < 3; k++) cx += g->pos[3 * g->tri[3 * f + k]] / 3;
+        for (int k = 0; k < 3; k++) {
+            int c = 3 * f + k, v = g->tri[c];
+            tuv[c] = c;
+            uv[2 * c] = g->pos[3 * v] + (cx > cut ? dx : 0);
+            uv[2 * c + 1] = g->pos[3 * v + 1];
+        }
+    }
+    /* Per-corner UVs: weld equal ones so the charts are the real islands. */
+    int nuv = 0;
+    for (int c = 0; c < 3 * g->nf; c++) {
+        int found = -1;
+        for (int d = 0; d < nuv && found < 0; d++)
+            if (uv[2 * d] == uv[2 * c] && uv[2 * d + 1] == uv[2 * c + 1]) found = d;
+        if (found < 0) { uv[2 * nuv] = uv[2 * c]; uv[2 * nuv + 1] = uv[2 * c + 1]; found = nuv++; }
+        tuv[c] = found;
+    }
+    mesh_set_uv(g, nuv, uv, tuv);
+    free(uv); free(tuv);
+    return g;
+}
+
+int main(void)
+{
+    uv_compare_result r;
+    neuv_mesh *a = two_chart_grid(16, 0.5, 0.5);
+
+    /* Itself: zero distance (even at the seam corners), full agreement. */
+    CHECK_INT(uv_compare(a, a, &r), NEUV_OK);
+    CHECK(r.uv_max == 0);
+    CHECK_NEAR(r.chart_agreement, 1, 0);
+    CHECK_NEAR(r.chart_agreement_faces, 1, 0);
+    CHECK_INT(r.charts_a, 2); CHECK_INT(r.charts_b, 2);
+    CHECK_INT(r.faces_a, a->nf);
+    CHECK_INT(r.vertices_compared, 17 * 17 + 17); /* the seam column counts once per side */
+
+    /* Its midpoint subdivision, UVs interpolated. */
+    neuv_mesh *s = NULL;
+    CHECK_INT(mesh_subdivide(a, 1, SUBDIVIDE_MIDPOINT, &s), NEUV_OK);
+    CHECK_INT(uv_compare(a, s, &r), NEUV_OK);
+    CHECK(r.uv_max < 1e-9);
+    CHECK_NEAR(r.chart_agreement, 1, 0);
+    CHECK_INT(r.faces_b, 4 * a->nf);
+    /* And the other way round. */
+    CHECK_INT(uv_compare(s, a, &r), NEUV_OK);
+    CHECK(r.uv_max < 1e-9);
+
+    /* Its jittered subdivision (vertices moved within the surface). */
+    CHECK_INT(mesh_jitter(s, 5, NULL, NULL), NEUV_OK);
+    CHECK_INT(uv_compare(a, s, &r), NEUV_OK);
+    CHECK(r.uv_max < 1e-9);
+    CHECK(r.chart_agreement > 0.999);
+    mesh_free(s);
+
+    /* UVs shifted by 0.01 in u: every corner is 0.01 away. */
+    neuv_mesh *b = mesh_clone(a);
+    for (int u = 0; u < b->nuv; u++) b->uv[2 * u] += 0.01;
+    CHECK_INT(uv_compare(a, b, &r), NEUV_OK);
+    CHECK_NEAR(r.uv_mean, 0.01, 1e-12);
+    CHECK_NEAR(r.uv_p95, 0.01, 1e-12);
+    CHECK_NEAR(r.uv_max, 0.01, 1e-12);
+    CHECK_NEAR(r.chart_agreement, 1, 0);
+    mesh_free(b);
+
+    /* The right island placed elsewhere in the atlas (shifted by 0.3
+     * instead of 0.5): the charts still agree, its corners are 0.2 away. */
+    b = two_chart_grid(16, 0.5, 0.3);
+    CHECK_INT(uv_compare(a, b, &r), NEUV_OK);
+    CHECK_NEAR(r.chart_agreement, 1, 0);
+    CHECK_NEAR(r.uv_max, 0.2, 1e-12);
+    /* 17*9 right-side corners of 17*18 are shifted. */
+    CHECK_NEAR(r.uv_mean, 0.2 * (17.0 * 9) / (17 * 18), 1e-12);
+    mesh_free(b);
+
+    /* Charts split at x = 0.25 instead of 0.5: B's right chart [0.25, 1]
+     * matches A's right chart (two thirds of it), so the strip [0.25, 0.5]
+     * disagrees: a quarter of the area (the surface is nearly flat). */
+    b = two_chart_grid(16, 0.25, 0.5);
+    CHECK_INT(uv_compare(a, b, &r), NEUV_OK);
+    CHECK_NEAR(r.chart_agreement_faces, 0.75, 1e-12);
+    CHECK_NEAR(r.chart_agreement, 0.75, 0.02);
+    mesh_free(b);
+
+    /* Bad inputs. */
+    neuv_mesh *plain = shape_grid(2, 2, 1, 1, 0);
+    CHECK_INT(uv_compare(a, plain, &r), NEUV_ERR_INPUT);
+    CHECK_INT(uv_compare(plain, a, &r), NEUV_ERR_INPUT);
+    mesh_free(plain);
+    mesh_free(a);
+    return check_report("test_compare");
+}
