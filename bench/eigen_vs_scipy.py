@@ -5,9 +5,10 @@ on the very same matrices, side by side in one run.
 
 usage: OPENBLAS_NUM_THREADS=1 bench/eigen_vs_scipy.py BUILD_DIR MESH... [--runs N]
 
-bench_eigen computes the eigenpairs (median of N runs) and writes L, M and
-its shift sigma to a temporary folder; this script then times SciPy on those
-files with the same sigma and k (median of N runs) and prints seconds, the
+bench_eigen computes the eigenpairs and writes L, M and its shift sigma to a
+temporary folder; a fresh Python child then times SciPy on those files with
+the same sigma and k. The two alternate for N rounds (medians are reported),
+so the load of a shared machine falls on both alike. Prints seconds, the
 ratio ours / SciPy, the largest relative eigenvalue difference, and peak
 memory (ru_maxrss) of each side: bench_eigen's whole process (mesh, L, M,
 factor, Lanczos basis), and a fresh Python child that loads L and M and runs
@@ -36,26 +37,35 @@ def parse_result(text):
 
 
 def bench_mesh(build, mesh, runs, k):
+    """Alternates one neuv run and one SciPy run, `runs` rounds, so a change in
+    machine load (the build machine is shared) hits both sides alike."""
+    ours_s, scipy_s, ours_rss, scipy_rss, scipy_base = [], [], 0, 0, 0
     with tempfile.TemporaryDirectory(prefix="neuv-eigen-") as tmp:
-        proc = subprocess.run([os.path.join(build, "bench", "bench_eigen"), mesh, "--runs", str(runs),
-                               "--k", str(k), "--out", tmp], capture_output=True, text=True)
-        if proc.returncode != 0:
-            raise RuntimeError(proc.stderr)
-        ours = parse_result(proc.stdout)
-        child = subprocess.run([sys.executable, os.path.abspath(__file__), "--scipy-child", tmp, ours["sigma"],
-                                str(runs), str(k)], capture_output=True, text=True)
-        if child.returncode != 0:
-            raise RuntimeError(child.stderr)
-        theirs = parse_result(child.stdout)
+        for _ in range(runs):
+            proc = subprocess.run([os.path.join(build, "bench", "bench_eigen"), mesh, "--runs", "1",
+                                   "--k", str(k), "--out", tmp], capture_output=True, text=True)
+            if proc.returncode != 0:
+                raise RuntimeError(proc.stderr)
+            ours = parse_result(proc.stdout)
+            ours_s.append(float(ours["median_s"]))
+            ours_rss = max(ours_rss, int(ours["maxrss_kb"]))
+            child = subprocess.run([sys.executable, os.path.abspath(__file__), "--scipy-child", tmp, ours["sigma"],
+                                    "1", str(k)], capture_output=True, text=True)
+            if child.returncode != 0:
+                raise RuntimeError(child.stderr)
+            theirs = parse_result(child.stdout)
+            scipy_s.append(float(theirs["median_s"]))
+            scipy_rss = max(scipy_rss, int(theirs["maxrss_kb"]))
+            scipy_base = max(scipy_base, int(theirs["base_kb"]))
         our_evals = np.loadtxt(os.path.join(tmp, "evals.txt"))
         w = np.loadtxt(os.path.join(tmp, "scipy_evals.txt"))
     scale = max(abs(w[-1]), 1e-300)
     diff = float(np.max(np.abs(w - our_evals)) / scale)
     return {
         "mesh": os.path.basename(mesh), "vertices": int(ours["vertices"]),
-        "ours_s": float(ours["median_s"]), "scipy_s": float(theirs["median_s"]),
-        "ours_rss_mb": int(ours["maxrss_kb"]) / 1024.0, "scipy_rss_mb": int(theirs["maxrss_kb"]) / 1024.0,
-        "scipy_base_mb": int(theirs["base_kb"]) / 1024.0, "eval_diff": diff,
+        "ours_s": statistics.median(ours_s), "scipy_s": statistics.median(scipy_s),
+        "ours_rss_mb": ours_rss / 1024.0, "scipy_rss_mb": scipy_rss / 1024.0,
+        "scipy_base_mb": scipy_base / 1024.0, "eval_diff": diff,
     }
 
 

@@ -1,5 +1,6 @@
 /* Generalized Laplacian eigenpairs: ARPACK shift-invert on CHOLMOD, or dense
  * LAPACK for small meshes. See eigenbasis.h. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -140,15 +141,16 @@ static neuv_status eigen_arpack(const sparse_matrix *L, const double *mass, int 
     rng g;
     rng_seed(&g, START_VECTOR_SEED);
     for (int i = 0; i < n; i++) resid[i] = rng_uniform(&g) - 0.5;
-    if (getenv("NEUV_EXP_SEED")) { rng_seed(&g, (uint64_t)atoll(getenv("NEUV_EXP_SEED"))); for (int i = 0; i < n; i++) resid[i] = rng_uniform(&g) - 0.5; }
-    if (getenv("NEUV_EXP_ONES")) for (int i = 0; i < n; i++) resid[i] = 1.0;
 
     int iparam[11] = {0}, ipntr[14] = {0};
     iparam[0] = 1;                    /* exact shifts */
     iparam[2] = ARPACK_MAX_RESTARTS;
     iparam[6] = 3;                    /* shift-invert mode */
-    int ido = 0, ainfo = getenv("NEUV_EXP_ARPACKRAND") ? 0 : 1;
-    double tol = 0.0;                 /* machine precision, as SciPy's eigsh default */
+    int ido = 0, ainfo = 1;
+    /* Unit roundoff, what SciPy's eigsh passes for its default tol = 0. Debian's
+     * ARPACK given 0 substitutes a smaller value and needs twice the restarts
+     * for no accuracy that matters (residuals are ~1e-13 either way). */
+    double tol = DBL_EPSILON / 2;
     for (;;) {
         dsaupd_c(&ido, "G", n, "LM", k, tol, resid, ncv, v, n, iparam, ipntr, workd, workl, lworkl, &ainfo);
         double top = now_seconds();
