@@ -1,0 +1,288 @@
+/* PatchNet: loss values on hand-checkable cases, their gradients by finite
+ * differences, the cube's six sides as six charts, disk charts covering
+ * every face on a sphere, a torus and fertility.off, and determinism. */
+#include <math.h>
+
+#include "check.h"
+#include "charts/charts.h"
+#include "core/rng.h"
+#include "geometry/operators.h"
+#include "losses/patch_losses.h"
+#include "mesh/clean.h"
+#include "mesh/shapes.h"
+#include "models/patchnet.h"
+
+#ifdef __SANITIZE_ADDRESS__
+#define SANITIZED 1
+#else
+#define SANITIZED 0
+#endif
+
+/* Two unit-area faces with normals z and x. */
+static void test_cos_values(void)
+{
+    nn_ctx *ctx = nn_ctx_create(0);
+    float area[2] = {1, 1}, normal[6] = {0, 0, 1, 1, 0, 0};
+    nn_tensor *a = nn_from(ctx, 2, 1, area), *n = nn_from(ctx, 2, 3, normal);
+    float one[2] = {1, 1};
+    nn_tensor *l = patch_loss_cos(ctx, nn_from(ctx, 2, 1, one), a, n);
+    CHECK_NEAR(l->data[0], 1 - 1 / sqrt(2.0), 1e-6);      /* m = (1,0,1)/√2 */
+    float eye[4] = {1, 0, 0, 1};
+    l = patch_loss_cos(ctx, nn_from(ctx, 2, 2, eye), a, n);
+    CHECK_NEAR(l->data[0], 0, 1e-6);                      /* each face its own patch */
+    float half[4] = {0.5f, 0.5f, 0.5f, 0.5f};
+    l = patch_loss_cos(ctx, nn_from(ctx, 2, 2, half), a, n);
+    CHECK_NEAR(l->data[0], 1 - 1 / sqrt(2.0), 1e-6);
+    /* Unequal areas 3 and 1 in one patch: m ∝ (1,0,3), n·m = 3/√10 and 1/√10. */
+    float area2[2] = {3, 1};
+    l = patch_loss_cos(ctx, nn_from(ctx, 2, 1, one), nn_from(ctx, 2, 1, area2), n);
+    CHECK_NEAR(l->data[0], (3 * (1 - 3 / sqrt(10.0)) + (1 - 1 / sqrt(10.0))) / 4, 1e-6);
+    nn_ctx_free(ctx);
+}
+
+/* Full-sum L_geo in double, for comparison. */
+static double geo_reference(int nf, int k, const float *P, const float *a, const float *D)
+{
+    double num = 0, den = 0;
+    for (int c = 0; c < k; c++) {
+        double s = 0;
+        for (int f = 0; f < nf; f++) {
+            s += a[f] * P[f * k + c];
+            for (int g = 0; g < nf; g++) num += (double)a[f] * a[g] * P[f * k + c] * P[g * k + c] * D[f * nf + g];
+        }
+        den += s * s;
+    }
+    return num / den;
+}
+
+static void test_geo_values(void)
+{
+    nn_ctx *ctx = nn_ctx_create(0);
+    /* Two faces, areas 2 and 1, distance 0.5, one patch:
+     * 2 · 2 · 1 · 0.5 / (3)² = 2/9. */
+    float area[2] = {2, 1}, D[4] = {0, 0.5f, 0.5f, 0}, one[2] = {1, 1};
+    int all[2] = {0, 1};
+    nn_tensor *l = patch_loss_geo(ctx, nn_from(ctx, 2, 1, one), nn_from(ctx, 2, 1, area), all, 2,
+                                  nn_from(ctx, 2, 2, D));
+    CHECK_NEAR(l->data[0], 2.0 / 9.0, 1e-6);
+    /* Each face its own patch: no pair shares a patch, L_geo = 0. */
+    float eye[4] = {1, 0, 0, 1};
+    l = patch_loss_geo(ctx, nn_from(ctx, 2, 2, eye), nn_from(ctx, 2, 1, area), all, 2, nn_from(ctx, 2, 2, D));
+    CHECK_NEAR(l->data[0], 0, 1e-7);
+    /* Random case: all faces as sources equals the double reference; a
+     * half sample is (F/S) times the partial sum over its rows. */
+    enum { F = 12, K = 3 };
+    rng r;
+    rng_seed(&r, 5);
+    float P[F * K], a[F], Dm[F * F];
+    for (int f = 0; f < F; f++) {
+        a[f] = (float)(0.5 + rng_uniform(&r));
+        double s = 0, e[K];
+        for (int c = 0; c < K; c++) s += e[c] = exp(2 * rng_normal(&r));
+        for (int c = 0; c < K; c++) P[f * K + c] = (float)(e[c] / s);
+    }
+    for (int f = 0; f < F; f++)
+        for (int g = 0; g <= f; g++) Dm[f * F + g] = Dm[g * F + f] = f == g ? 0 : (float)rng_uniform(&r);
+    int src[F];
+    for (int f = 0; f < F; f++) src[f] = f;
+    l = patch_loss_geo(ctx, nn_from(ctx, F, K, P), nn_from(ctx, F, 1, a), src, F, nn_from(ctx, F, F, Dm));
+    CHECK_NEAR(l->data[0], geo_reference(F, K, P, a, Dm), 1e-5);
+    int half[6] = {1, 2, 5, 7, 8, 11};
+    float Dh[6 * F];
+    for (int s = 0; s < 6; s++) memcpy(Dh + s * F, Dm + half[s] * F, sizeof(float) * F);
+    l = patch_loss_geo(ctx, nn_from(ctx, F, K, P), nn_from(ctx, F, 1, a), half, 6, nn_from(ctx, 6, F, Dh));
+    double num = 0, den = 0;
+    for (int c = 0; c < K; c++) {
+        double sc = 0;
+        for (int f = 0; f < F; f++) sc += a[f] * P[f * K + c];
+        den += sc * sc;
+        for (int s = 0; s < 6; s++)
+            for (int g = 0; g < F; g++)
+                num += (double)a[half[s]] * a[g] * P[half[s] * K + c] * P[g * K + c] * Dm[half[s] * F + g];
+    }
+    CHECK_NEAR(l->data[0], (F / 6.0) * num / den, 1e-5);
+    nn_ctx_free(ctx);
+}
+
+/* Gradients of both losses with respect to logits Z (P = softmax(Z)). */
+static double loss_of(nn_ctx *ctx, nn_tensor *Z, int which, int F, const float *a, const float *n, const int *src,
+                      int S, const float *D)
+{
+    nn_ctx_reset(ctx);
+    nn_tensor *P = nn_softmax_rows(ctx, Z);
+    nn_tensor *l = which == 0 ? patch_loss_cos(ctx, P, nn_from(ctx, F, 1, a), nn_from(ctx, F, 3, n))
+                              : patch_loss_geo(ctx, P, nn_from(ctx, F, 1, a), src, S, nn_from(ctx, S, F, D));
+    return l->data[0];
+}
+
+static void test_loss_gradients(void)
+{
+    enum { F = 10, K = 4, S = 5 };
+    rng r;
+    rng_seed(&r, 17);
+    float a[F], n[F * 3], D[S * F];
+    int src[S] = {0, 3, 4, 6, 9};
+    for (int f = 0; f < F; f++) {
+        a[f] = (float)(0.3 + rng_uniform(&r));
+        double v[3], s = 0;
+        for (int d = 0; d < 3; d++) { v[d] = rng_normal(&r); s += v[d] * v[d]; }
+        for (int d = 0; d < 3; d++) n[3 * f + d] = (float)(v[d] / sqrt(s));
+    }
+    for (int i = 0; i < S * F; i++) D[i] = (float)rng_uniform(&r);
+    nn_tensor *Z = nn_param_create(F, K, "z");
+    for (int i = 0; i < F * K; i++) Z->data[i] = (float)rng_normal(&r);
+    nn_ctx *ctx = nn_ctx_create(0);
+    for (int which = 0; which < 2; which++) {
+        loss_of(ctx, Z, which, F, a, n, src, S, D);
+        nn_ctx_reset(ctx);
+        nn_tensor *P = nn_softmax_rows(ctx, Z);
+        nn_tensor *l = which == 0 ? patch_loss_cos(ctx, P, nn_from(ctx, F, 1, a), nn_from(ctx, F, 3, n))
+                                  : patch_loss_geo(ctx, P, nn_from(ctx, F, 1, a), src, S, nn_from(ctx, S, F, D));
+        memset(Z->grad, 0, sizeof(float) * F * K);
+        CHECK(nn_backward(ctx, l) == NEUV_OK);
+        float g[F * K];
+        memcpy(g, Z->grad, sizeof g);
+        double worst = 0, gmax = 0;
+        for (int i = 0; i < F * K; i++) {
+            float s = Z->data[i];
+            double h = 1e-2;
+            Z->data[i] = (float)(s + h);
+            double lp = loss_of(ctx, Z, which, F, a, n, src, S, D);
+            Z->data[i] = (float)(s - h);
+            double lm = loss_of(ctx, Z, which, F, a, n, src, S, D);
+            Z->data[i] = s;
+            worst = fmax(worst, fabs((lp - lm) / (2 * h) - g[i]));
+            gmax = fmax(gmax, fabs(g[i]));
+        }
+        CHECK(gmax > 1e-3);
+        CHECK(worst < 2e-3 * fmax(gmax, 1e-2) + 2e-4);
+        if (!(worst < 2e-3 * fmax(gmax, 1e-2) + 2e-4))
+            fprintf(stderr, "%s: worst gradient error %g (max gradient %g)\n", which ? "L_geo" : "L_cos", worst, gmax);
+    }
+    nn_ctx_free(ctx);
+    nn_param_free(Z);
+}
+
+typedef struct segmented {
+    int *chart;
+    int n;
+    patchnet_report rep;
+} segmented;
+
+static int segment(const neuv_mesh *m, const patchnet_options *o, segmented *s)
+{
+    operators ops;
+    operators_params p = operators_default_params();
+    if (operators_compute(m, &p, &ops) != NEUV_OK) return 0;
+    s->chart = malloc(sizeof(int) * m->nf);
+    neuv_status st = patchnet_segment(m, &ops, o, s->chart, &s->n, NULL, NULL, &s->rep);
+    operators_free(&ops);
+    if (st) fprintf(stderr, "patchnet_segment: %s\n", neuv_last_error());
+    return st == NEUV_OK;
+}
+
+/* Every face in exactly one chart id in 0..n-1, every chart non-empty and a disk. */
+static void check_disk_cover(const neuv_mesh *m, const segmented *s, const char *what)
+{
+    int *count = calloc(s->n, sizeof(int)), bad = 0;
+    for (int f = 0; f < m->nf; f++) {
+        if (s->chart[f] < 0 || s->chart[f] >= s->n) bad++;
+        else count[s->chart[f]]++;
+    }
+    CHECK_INT(bad, 0);
+    int empty = 0, nondisk = 0;
+    for (int c = 0; c < s->n; c++) {
+        if (!count[c]) empty++;
+        if (chart_is_disk(m, s->chart, c) != 1) nondisk++;
+    }
+    CHECK_INT(empty, 0);
+    CHECK_INT(nondisk, 0);
+    printf("%s: %d faces, %d charts, worst LSCM qce %.4f, %d iterations\n", what, m->nf, s->n, s->rep.worst_qce,
+           s->rep.iterations);
+    free(count);
+}
+
+/* Cube with K = 6: each chart is one whole side (all faces of a chart share
+ * the normal, and there are six charts of equal size). */
+static void test_cube_sides(void)
+{
+    neuv_mesh *m = shape_cube(6);
+    patchnet_options o;
+    patchnet_default_options(&o);
+    o.charts = 6;
+    if (getenv("NEUV_TEST_SEED")) o.seed = (uint64_t)atoi(getenv("NEUV_TEST_SEED"));
+    /* xyz input: HKS is the same on all six sides (the cube's symmetries
+     * preserve it), so an intrinsic network cannot tell the sides apart. */
+    o.features = DIFFUSION_NET_XYZ;
+    o.iters = 300;
+    segmented s;
+    CHECK(segment(m, &o, &s));
+    CHECK_INT(s.n, 6);
+    int mixed = 0;
+    for (int c = 0; c < s.n; c++) {
+        double n0[3] = {0, 0, 0};
+        int first = 1, count = 0;
+        for (int f = 0; f < m->nf; f++) {
+            if (s.chart[f] != c) continue;
+            double n[3];
+            mesh_face_normal(m, f, n);
+            if (first) { memcpy(n0, n, sizeof n); first = 0; }
+            else if (n[0] * n0[0] + n[1] * n0[1] + n[2] * n0[2] < 0.99) mixed++;
+            count++;
+        }
+        CHECK_INT(count, m->nf / 6);
+    }
+    CHECK_INT(mixed, 0);
+    printf("cube: %d faces, %d charts, loss %.4f after %d iterations\n", m->nf, s.n, s.rep.loss, s.rep.iterations);
+    free(s.chart);
+    mesh_free(m);
+}
+
+static void test_auto_disks(void)
+{
+    patchnet_options o;
+    patchnet_default_options(&o);
+    if (SANITIZED) o.iters = 40;
+    neuv_mesh *sphere = shape_icosphere(SANITIZED ? 2 : 3, 1.0);
+    segmented s;
+    CHECK(segment(sphere, &o, &s));
+    check_disk_cover(sphere, &s, "sphere");
+    CHECK(s.rep.worst_qce < o.max_distortion);
+    /* Same seed, same threads: identical charts. */
+    segmented s2;
+    CHECK(segment(sphere, &o, &s2));
+    CHECK_INT(s2.n, s.n);
+    CHECK(!memcmp(s.chart, s2.chart, sizeof(int) * sphere->nf));
+    free(s.chart);
+    free(s2.chart);
+    mesh_free(sphere);
+
+    neuv_mesh *torus = shape_torus(1.0, 0.35, SANITIZED ? 24 : 48, SANITIZED ? 12 : 20);
+    CHECK(segment(torus, &o, &s));
+    check_disk_cover(torus, &s, "torus");
+    CHECK(s.rep.worst_qce < o.max_distortion);
+    free(s.chart);
+    mesh_free(torus);
+
+    const char *path = shared_path("meshes/fertility.off");
+    if (!path || SANITIZED) return;
+    neuv_mesh *m = NULL;
+    if (neuv_mesh_load(path, &m) != NEUV_OK) { printf("fertility.off not readable: skipped\n"); return; }
+    CHECK(mesh_clean(m, NULL, NULL) == NEUV_OK);
+    CHECK(segment(m, &o, &s));
+    check_disk_cover(m, &s, "fertility");
+    CHECK(s.rep.worst_qce < o.max_distortion || s.n >= o.max_charts);
+    free(s.chart);
+    mesh_free(m);
+}
+
+int main(void)
+{
+    nn_set_threads(1);
+    test_cos_values();
+    test_geo_values();
+    test_loss_gradients();
+    test_cube_sides();
+    test_auto_disks();
+    return check_report("test_patchnet");
+}
