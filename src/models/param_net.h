@@ -10,7 +10,9 @@
  * scaled by s so that its geodesic radius (largest heat-method distance from
  * the vertex nearest the centroid) is `radius` (0.6): an isometric map then
  * stays inside tanh's range with margin, and σ = 0.2 means the same share of
- * every chart. normalized = (x − centre) s; UVs come back divided by s, so they
+ * every chart. The chart is also turned into its own frame (z along its mean
+ * normal, x along its principal axis) so that all charts look alike to the
+ * networks. normalized = R (x − centre) s; UVs come back divided by s, so they
  * are in the mesh's length units (what a packer wants).
  *
  * ψ: pooled (default) = [mean, max] over the chart's vertices of the input
@@ -101,7 +103,8 @@ struct param_net_model {
     int psi_dim, n_charts;
     float *psi;             /* n_charts by psi_dim (pooled mode) */
     double *center;         /* n_charts by 3: area-weighted centroid, mesh units */
-    double *scale;          /* n_charts: normalized = (x − center) scale */
+    double *scale;          /* n_charts: normalized = R (x − center) scale */
+    double *rot;            /* n_charts by 3 by 3: R, rows x, y (tangent, principal axis first), z (mean normal) */
     int *mirror;            /* n_charts: 1 when u was negated to make the chart counter-clockwise */
 };
 

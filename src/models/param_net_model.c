@@ -10,7 +10,7 @@ void param_net_model_free(param_net_model *model)
     param_mlp_free(&model->f);
     param_mlp_free(&model->g);
     nn_params_free(&model->params);
-    free(model->psi); free(model->center); free(model->scale); free(model->mirror);
+    free(model->psi); free(model->center); free(model->scale); free(model->rot); free(model->mirror);
     free(model);
 }
 
@@ -45,8 +45,13 @@ neuv_status param_net_apply(const param_net_model *model, int chart_id, const do
     if (!in || !out) { free(in); free(out); return neuv_fail_nomem("parameterization inference"); }
     const double *c = model->center + 3 * chart_id;
     double sc = model->scale[chart_id];
-    for (int i = 0; i < n; i++)
-        for (int q = 0; q < 3; q++) in[3 * i + q] = (float)((points[3 * i + q] - c[q]) * sc);
+    const double *R = model->rot + 9 * chart_id;
+    for (int i = 0; i < n; i++) {
+        const double *p = points + 3 * i;
+        for (int q = 0; q < 3; q++)
+            in[3 * i + q] = (float)(sc * (R[3 * q] * (p[0] - c[0]) + R[3 * q + 1] * (p[1] - c[1]) +
+                                          R[3 * q + 2] * (p[2] - c[2])));
+    }
     neuv_status s = run_net(model, &model->f, chart_id, in, n, 3, out, 2);
     double sign = model->mirror[chart_id] ? -1 : 1;
     if (s == NEUV_OK)
@@ -72,10 +77,11 @@ neuv_status param_net_apply_inverse(const param_net_model *model, int chart_id, 
         in[2 * i + 1] = (float)(uv[2 * i + 1] * sc);
     }
     neuv_status s = run_net(model, &model->g, chart_id, in, n, 2, out, 3);
-    const double *c = model->center + 3 * chart_id;
+    const double *c = model->center + 3 * chart_id, *R = model->rot + 9 * chart_id;
     if (s == NEUV_OK)
         for (int i = 0; i < n; i++)
-            for (int q = 0; q < 3; q++) points[3 * i + q] = out[3 * i + q] / sc + c[q];
+            for (int q = 0; q < 3; q++) /* x = R^T y / s + c */
+                points[3 * i + q] = (R[q] * out[3 * i] + R[3 + q] * out[3 * i + 1] + R[6 + q] * out[3 * i + 2]) / sc + c[q];
     free(in); free(out);
     return s;
 }

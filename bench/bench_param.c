@@ -1,0 +1,226 @@
+/* The parameterization networks on spot.obj against LSCM on the same charts,
+ * plus the paper's two ablations (no L_iso; per-vertex features instead of
+ * the pooled ψ).
+ *
+ *   cmake --build build --target bench_param && ./build/bench/bench_param [mesh] [charts-K] [threads]
+ *   ./build/bench/bench_param MESH K THREADS one NAME key=value...   (one configuration, for tuning)
+ *       keys: width depth iters lambda_angle lambda_area warmup late_angle late_area
+ *             psi=pooled|vertex iso=0|1 seed face_points iso_pairs min_iters paper=1
+ *
+ * Charts: k-means (K clusters, farthest-point start, 10 Lloyd rounds) of the
+ * unit face normals, then charts_from_labels (connected disks). ψ has no
+ * DiffusionNet features yet: the feature-free code (chart centroid and mean
+ * normal; per-vertex: position and normal). Each configuration runs once (a
+ * training run is seconds to minutes; medians would multiply that); LSCM is
+ * the reference measured in the same run. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "charts/charts.h"
+#include "core/timer.h"
+#include "flatten/lscm.h"
+#include "mesh/clean.h"
+#include "mesh/shapes.h"
+#include "metrics/uv_metrics.h"
+#include "models/param_net.h"
+#include "nn/nn.h"
+
+/* Upper half of a unit UV sphere (z >= 0): a curved disk. */
+static neuv_mesh *test_cap(void)
+{
+    neuv_mesh *s = shape_uv_sphere(32, 16, 1.0);
+    if (!s) return NULL;
+    int *keep = calloc((size_t)s->nv, sizeof(int)), nv = 0, nf = 0;
+    for (int f = 0; f < s->nf; f++) {
+        double z = (s->pos[3 * s->tri[3 * f] + 2] + s->pos[3 * s->tri[3 * f + 1] + 2] + s->pos[3 * s->tri[3 * f + 2] + 2]) / 3;
+        if (z > 0) { nf++; for (int k = 0; k < 3; k++) keep[s->tri[3 * f + k]] = 1; }
+    }
+    for (int v = 0; v < s->nv; v++) keep[v] = keep[v] ? nv++ : -1;
+    neuv_mesh *c = mesh_create(nv, nf, 0);
+    for (int v = 0; v < s->nv; v++)
+        if (keep[v] >= 0) for (int q = 0; q < 3; q++) c->pos[3 * keep[v] + q] = s->pos[3 * v + q];
+    nf = 0;
+    for (int f = 0; f < s->nf; f++) {
+        double z = (s->pos[3 * s->tri[3 * f] + 2] + s->pos[3 * s->tri[3 * f + 1] + 2] + s->pos[3 * s->tri[3 * f + 2] + 2]) / 3;
+        if (z > 0) { for (int k = 0; k < 3; k++) c->tri[3 * nf + k] = keep[s->tri[3 * f + k]]; nf++; }
+    }
+    free(keep);
+    mesh_free(s);
+    return c;
+}
+
+static int kmeans_normals(const neuv_mesh *m, int k, int *label)
+{
+    double *n = malloc((size_t)m->nf * 3 * sizeof(double)), *c = malloc((size_t)k * 3 * sizeof(double));
+    double *dmin = malloc((size_t)m->nf * sizeof(double));
+    if (!n || !c || !dmin) return -1;
+    for (int f = 0; f < m->nf; f++) mesh_face_normal(m, f, n + 3 * f);
+    memcpy(c, n, 3 * sizeof(double));
+    for (int f = 0; f < m->nf; f++) dmin[f] = INFINITY;
+    for (int j = 1; j < k; j++) {
+        int far = 0;
+        for (int f = 0; f < m->nf; f++) {
+            const double *p = n + 3 * f, *q = c + 3 * (j - 1);
+            double d = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
+            if (d < dmin[f]) dmin[f] = d;
+            if (dmin[f] > dmin[far]) far = f;
+        }
+        memcpy(c + 3 * j, n + 3 * far, 3 * sizeof(double));
+    }
+    for (int round = 0; round < 10; round++) {
+        for (int f = 0; f < m->nf; f++) {
+            double best = -INFINITY;
+            for (int j = 0; j < k; j++) {
+                double d = n[3 * f] * c[3 * j] + n[3 * f + 1] * c[3 * j + 1] + n[3 * f + 2] * c[3 * j + 2];
+                if (d > best) { best = d; label[f] = j; }
+            }
+        }
+        memset(c, 0, (size_t)k * 3 * sizeof(double));
+        for (int f = 0; f < m->nf; f++)
+            for (int q = 0; q < 3; q++) c[3 * label[f] + q] += n[3 * f + q] * mesh_face_area(m, f);
+        for (int j = 0; j < k; j++) {
+            double l = sqrt(c[3 * j] * c[3 * j] + c[3 * j + 1] * c[3 * j + 1] + c[3 * j + 2] * c[3 * j + 2]);
+            if (l > 0) for (int q = 0; q < 3; q++) c[3 * j + q] /= l;
+        }
+    }
+    free(n); free(c); free(dmin);
+    return 0;
+}
+
+/* Metrics of per-corner UVs (#F by 3 by 2) on a copy of m. */
+static int corner_metrics(const neuv_mesh *m, const double *corner_uv, uv_metrics *mt)
+{
+    neuv_mesh *c = mesh_clone(m);
+    int *tri_uv = malloc((size_t)m->nf * 3 * sizeof(int));
+    if (!c || !tri_uv) return -1;
+    for (int i = 0; i < 3 * m->nf; i++) tri_uv[i] = i;
+    int ok = mesh_set_uv(c, 3 * m->nf, corner_uv, tri_uv) == NEUV_OK && uv_metrics_compute(c, mt) == NEUV_OK;
+    free(tri_uv);
+    mesh_free(c);
+    return ok ? 0 : -1;
+}
+
+static int lscm_charts(const neuv_mesh *m, const int *chart, int nc, double *corner_uv)
+{
+    for (int c = 0; c < nc; c++) {
+        neuv_mesh *sub; int *vmap, *fmap;
+        if (chart_submesh(m, chart, c, &sub, &vmap, &fmap) != NEUV_OK) return -1;
+        double *uv = malloc((size_t)sub->nv * 2 * sizeof(double));
+        if (!uv || lscm(sub, uv) != NEUV_OK) return -1;
+        for (int f = 0; f < sub->nf; f++)
+            for (int k = 0; k < 3; k++)
+                for (int q = 0; q < 2; q++) corner_uv[6 * fmap[f] + 2 * k + q] = uv[2 * sub->tri[3 * f + k] + q];
+        free(uv); free(vmap); free(fmap); mesh_free(sub);
+    }
+    return 0;
+}
+
+static void print_row(const char *name, double sec, int iters, const uv_metrics *mt, const param_net_report *rep)
+{
+    printf("| %s | %.2f | %d | %.1f | %.4f | %.4f | %d | %s |\n", name, sec, iters,
+           iters > 0 && rep ? iters / rep->train_seconds : 0.0, mt->qce_mean, mt->ase_abs_mean, mt->flipped,
+           rep ? "" : "(reference)");
+    if (rep)
+        fprintf(stderr, "  %s: params/MLP %ld, pairs %ld, plateau %d, loss %.5f (cycle %.2e iso %.2e angle %.2e area %.2e), cycle_rms %.4f, setup %.2fs\n",
+                name, rep->parameters, rep->pairs, rep->stopped_on_plateau, rep->loss, rep->loss_cycle,
+                rep->loss_iso, rep->loss_angle, rep->loss_area, rep->cycle_rms, rep->setup_seconds);
+    fflush(stdout);
+}
+
+static int run(const neuv_mesh *m, const int *chart, int nc, const char *name, const param_net_options *o)
+{
+    double *uv = malloc((size_t)m->nf * 6 * sizeof(double));
+    param_net_report rep;
+    double t0 = now_seconds();
+    if (!uv || param_net_flatten(m, chart, nc, NULL, 0, o, uv, &rep) != NEUV_OK) {
+        fprintf(stderr, "%s: %s\n", name, neuv_last_error());
+        return 1;
+    }
+    double t = now_seconds() - t0;
+    uv_metrics mt;
+    if (corner_metrics(m, uv, &mt)) return 1;
+    print_row(name, t, rep.iters, &mt, &rep);
+    free(uv);
+    return 0;
+}
+
+static void apply_key(param_net_options *o, const char *kv)
+{
+    const char *eq = strchr(kv, '=');
+    if (!eq) return;
+    double v = atof(eq + 1);
+    size_t n = (size_t)(eq - kv);
+#define KEY(s) (n == strlen(s) && !strncmp(kv, s, n))
+    if (KEY("paper")) param_net_default_options(o, PARAM_PRESET_PAPER);
+    else if (KEY("width")) o->width = (int)v;
+    else if (KEY("depth")) o->depth = (int)v;
+    else if (KEY("iters")) o->iters = (int)v;
+    else if (KEY("min_iters")) o->min_iters = (int)v;
+    else if (KEY("lambda_angle")) o->lambda[2] = v;
+    else if (KEY("lambda_area")) o->lambda[3] = v;
+    else if (KEY("warmup")) o->warmup_iters = (int)v;
+    else if (KEY("late_angle")) o->lambda_late[0] = v;
+    else if (KEY("late_area")) o->lambda_late[1] = v;
+    else if (KEY("iso")) o->lambda[1] = v;
+    else if (KEY("seed")) o->seed = (uint64_t)v;
+    else if (KEY("face_points")) o->face_points = (int)v;
+    else if (KEY("iso_pairs")) o->iso_pairs = (int)v;
+    else if (KEY("radius")) o->radius = v;
+    else if (KEY("lr")) o->lr = (float)v;
+    else if (KEY("psi")) o->psi_mode = !strcmp(eq + 1, "vertex") ? PARAM_PSI_PER_VERTEX : PARAM_PSI_POOLED;
+    else fprintf(stderr, "unknown key %s\n", kv);
+#undef KEY
+}
+
+int main(int argc, char **argv)
+{
+    const char *path = argc > 1 ? argv[1] : "../shared/meshes/spot.obj";
+    int k = argc > 2 ? atoi(argv[2]) : 12;
+    int threads = argc > 3 ? atoi(argv[3]) : 2;
+    nn_set_threads(threads);
+    neuv_mesh *m = NULL;
+    if (!strcmp(path, "grid")) m = shape_grid(16, 16, 1.0, 1.0, 0); /* tuning shapes, one chart each (K = 1) */
+    else if (!strcmp(path, "cap")) m = test_cap();
+    if (!m && (neuv_mesh_load(path, &m) != NEUV_OK || mesh_clean(m, NULL, NULL) != NEUV_OK)) {
+        fprintf(stderr, "%s: %s\n", path, neuv_last_error());
+        return 1;
+    }
+    int *label = malloc((size_t)m->nf * sizeof(int)), *chart = malloc((size_t)m->nf * sizeof(int)), nc;
+    if (!label || !chart || (k > 1 ? kmeans_normals(m, k, label) : (memset(label, 0, (size_t)m->nf * sizeof(int)), 0)) || charts_from_labels(m, label, NULL, chart, &nc, NULL) != NEUV_OK) {
+        fprintf(stderr, "charts: %s\n", neuv_last_error());
+        return 1;
+    }
+    printf("%s: %d vertices, %d faces, %d charts (k-means K=%d of face normals), %d threads\n\n", path, m->nv,
+           m->nf, nc, k, threads);
+    printf("| configuration | seconds | iterations | it/s | qce_mean | ase_abs_mean | flipped | |\n|---|---|---|---|---|---|---|---|\n");
+    double *uv = malloc((size_t)m->nf * 6 * sizeof(double));
+    double t0 = now_seconds();
+    if (!uv || lscm_charts(m, chart, nc, uv)) { fprintf(stderr, "lscm: %s\n", neuv_last_error()); return 1; }
+    double tl = now_seconds() - t0;
+    uv_metrics mt;
+    if (corner_metrics(m, uv, &mt)) return 1;
+    print_row("LSCM", tl, 0, &mt, NULL);
+    free(uv);
+
+    param_net_options o;
+    param_net_default_options(&o, PARAM_PRESET_FAST);
+    if (argc > 5 && !strcmp(argv[4], "one")) {
+        for (int i = 6; i < argc; i++) apply_key(&o, argv[i]);
+        return run(m, chart, nc, argv[5], &o);
+    }
+    int rc = run(m, chart, nc, "neural fast", &o);
+    param_net_options a = o;
+    a.lambda[1] = 0;
+    rc |= run(m, chart, nc, "fast, no L_iso (ablation)", &a);
+    a = o;
+    a.psi_mode = PARAM_PSI_PER_VERTEX;
+    rc |= run(m, chart, nc, "fast, per-vertex ψ (ablation)", &a);
+    param_net_options p;
+    param_net_default_options(&p, PARAM_PRESET_PAPER);
+    if (argc > 4) p.iters = atoi(argv[4]);
+    rc |= run(m, chart, nc, "neural paper", &p);
+    free(label); free(chart); mesh_free(m);
+    return rc;
+}
