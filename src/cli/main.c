@@ -1,5 +1,7 @@
 /* neuv command line: dispatches to one function per subcommand. */
 #include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
 #include <string.h>
 
 #include "cli/cli.h"
@@ -39,8 +41,21 @@ static void usage(FILE *out)
                  "exit codes: 0 success, 2 bad input or usage, 1 internal error\n");
 }
 
+/* OpenMP threads that spin after a parallel loop (libgomp's default) starve
+ * OpenBLAS's own threads on a 2-core machine: a training step measured 6x
+ * slower with 2 threads than with 1. libgomp reads OMP_WAIT_POLICY once, when
+ * it is loaded, so the CLI re-executes itself once with the passive policy
+ * unless the user chose a policy. If exec fails, it simply runs as is. */
+static void prefer_passive_openmp(char **argv)
+{
+    if (getenv("OMP_WAIT_POLICY")) return;
+    setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+    execv("/proc/self/exe", argv);
+}
+
 int main(int argc, char **argv)
 {
+    prefer_passive_openmp(argv);
     if (argc < 2) { usage(stderr); return 2; }
     const char *name = argv[1];
     if (!strcmp(name, "-h") || !strcmp(name, "--help") || !strcmp(name, "help")) { usage(stdout); return 0; }
