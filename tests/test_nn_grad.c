@@ -37,6 +37,29 @@ static double weighted_output(nn_tensor *out, const float *w)
     return s;
 }
 
+/* Optional test on drawn inputs (1 = usable): redraw until it accepts. */
+typedef int (*accept_fn)(nn_tensor **in);
+static accept_fn accept_inputs;
+
+/* Smallest |pre-activation| of the (leaky) ReLUs in the tape ending at t: the
+ * input itself for relu ops, |y| (or |y| / slope) for fused linear layers. */
+static float closest_to_kink(nn_tensor *t)
+{
+    float closest = INFINITY;
+    for (; t; t = t->prev) {
+        int lin = t->op == NN_OP_LINEAR && (t->iparam[0] == NN_ACT_RELU || t->iparam[0] == NN_ACT_LEAKY_RELU);
+        if (t->op != NN_OP_LEAKY_RELU && t->op != NN_OP_RELU && !lin) continue;
+        for (int i = 0; i < t->rows * t->cols; i++) {
+            float v;
+            if (!lin) v = fabsf(t->src[0]->data[i]);
+            else if (t->iparam[0] == NN_ACT_RELU) v = t->data[i] > 0 ? t->data[i] : INFINITY; /* z <= 0 unseen */
+            else v = t->data[i] > 0 ? t->data[i] : -t->data[i] / t->fparam[0];
+            if (v < closest) closest = v;
+        }
+    }
+    return closest;
+}
+
 /* Returns the largest violation ratio |analytic - numeric| / tolerance (<= 1 passes). */
 static double gradcheck(const char *name, build_fn f, int nin, const input_spec *spec, float eps)
 {
@@ -47,7 +70,11 @@ static double gradcheck(const char *name, build_fn f, int nin, const input_spec 
         char nm[16];
         snprintf(nm, sizeof nm, "in%d", k);
         in[k] = nn_params_add(&ps, spec[k].rows, spec[k].cols, nm);
-        for (long i = 0; i < (long)spec[k].rows * spec[k].cols; i++) in[k]->data[i] = draw(&spec[k]);
+    }
+    for (int attempt = 0; attempt < 1000; attempt++) {
+        for (int k = 0; k < nin; k++)
+            for (long i = 0; i < (long)spec[k].rows * spec[k].cols; i++) in[k]->data[i] = draw(&spec[k]);
+        if (!accept_inputs || accept_inputs(in)) break;
     }
     nn_ctx *ctx = nn_ctx_create(0);
     nn_tensor *out = f(ctx, in);
@@ -122,6 +149,19 @@ static nn_tensor *g_row_dot(nn_ctx *c, nn_tensor **x) { return nn_row_dot(c, x[0
 static nn_tensor *g_row_dot_self(nn_ctx *c, nn_tensor **x) { return nn_row_dot(c, x[0], x[0]); }
 static nn_tensor *g_row_cosine(nn_ctx *c, nn_tensor **x) { return nn_row_cosine(c, x[0], x[1], 1e-8f); }
 static nn_tensor *g_clamp(nn_ctx *c, nn_tensor **x) { return nn_clamp_min(c, x[0], 0.1f); }
+static nn_activation act_flag;
+static nn_tensor *g_linear(nn_ctx *c, nn_tensor **x) { return nn_linear_act(c, x[0], x[1], x[2], act_flag, 0.2f); }
+/* Pre-activations x W + b at least 0.05 from zero (a 5e-3 step cannot cross the kink). */
+static int linear_away_from_kink(nn_tensor **x)
+{
+    for (int i = 0; i < x[0]->rows; i++)
+        for (int j = 0; j < x[1]->cols; j++) {
+            double z = x[2]->data[j];
+            for (int p = 0; p < x[0]->cols; p++) z += (double)x[0]->data[i * x[0]->cols + p] * x[1]->data[p * x[1]->cols + j];
+            if (fabs(z) < 0.05) return 0;
+        }
+    return 1;
+}
 
 /* A DiffusionNet-like chain: spectral coefficients, learned times clamped
  * positive, exp(-lambda t) scaling, back to vertices; exercises transposed
@@ -136,6 +176,12 @@ static nn_tensor *g_diffusion(nn_ctx *c, nn_tensor **x)
     return nn_matmul(c, phi, nn_mul(c, coef, scale));                          /* 6 by C */
 }
 
+
+/* The unfused activation with the slope the fused checks use. */
+static nn_tensor *nn_activate_ref(nn_ctx *c, nn_tensor *z, nn_activation act)
+{
+    return nn_activate(c, z, act, 0.1f);
+}
 
 static nn_mlp mlp_under_test;
 static nn_tensor *mlp_input;
@@ -166,12 +212,7 @@ static void mlp_check(nn_activation hidden, const char *name)
         for (int i = 0; i < 12; i++) xin[i] = (float)(2 * rng_uniform(&gen) - 1);
         nn_ctx_reset(ctx);
         out = g_mlp(ctx, NULL);
-        float closest = INFINITY;
-        for (nn_tensor *t = out; t; t = t->prev)
-            if (t->op == NN_OP_LEAKY_RELU)
-                for (int i = 0; i < t->rows * t->cols; i++)
-                    if (fabsf(t->src[0]->data[i]) < closest) closest = fabsf(t->src[0]->data[i]);
-        if (closest >= 0.02f) break;
+        if (closest_to_kink(out) >= 0.02f) break;
     }
     float w[8];
     for (int i = 0; i < 8; i++) w[i] = (float)(2 * rng_uniform(&gen) - 1);
@@ -201,6 +242,116 @@ static void mlp_check(nn_activation hidden, const char *name)
     printf("  %-28s worst error/tolerance %.3f (%zu parameters)\n", name, worst, nn_params_count(&ps));
     nn_ctx_free(ctx);
     nn_mlp_free(&mlp_under_test);
+    nn_params_free(&ps);
+}
+
+/* Products large enough to be split across threads (row blocks, or column
+ * blocks when the result is wide) match a double-precision reference, forward
+ * and backward, for every transpose combination and sizes that are not
+ * multiples of the block rounding. */
+static void threaded_matmul_check(int m, int n, int k)
+{
+    nn_set_threads(2);
+    for (int ta = 0; ta < 2; ta++)
+        for (int tb = 0; tb < 2; tb++) {
+            nn_params ps;
+            nn_params_init(&ps);
+            nn_tensor *a = nn_params_add(&ps, ta ? k : m, ta ? m : k, "a");
+            nn_tensor *b = nn_params_add(&ps, tb ? n : k, tb ? k : n, "b");
+            for (long i = 0; i < (long)m * k; i++) a->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+            for (long i = 0; i < (long)k * n; i++) b->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+            float *w = malloc((size_t)m * n * sizeof *w);
+            for (long i = 0; i < (long)m * n; i++) w[i] = (float)(2 * rng_uniform(&gen) - 1);
+            nn_ctx *ctx = nn_ctx_create(0);
+            nn_tensor *c = nn_matmul_t(ctx, a, ta, b, tb);
+            CHECK(c && c->rows == m && c->cols == n);
+            CHECK_INT(nn_backward(ctx, nn_sum(ctx, nn_mul(ctx, c, nn_from(ctx, m, n, w)), NN_ALL)), NEUV_OK);
+#define A_(i, p) ((double)(ta ? a->data[(long)(p) * m + (i)] : a->data[(long)(i) * k + (p)]))
+#define B_(p, j) ((double)(tb ? b->data[(long)(j) * k + (p)] : b->data[(long)(p) * n + (j)]))
+            double worst = 0;
+            for (int i = 0; i < m; i += 7)
+                for (int j = 0; j < n; j++) {
+                    double r = 0;
+                    for (int p = 0; p < k; p++) r += A_(i, p) * B_(p, j);
+                    double e = fabs(c->data[(long)i * n + j] - r) / (1e-4 * (1 + fabs(r)));
+                    if (e > worst) worst = e;
+                }
+            for (int i = 0; i < m; i += 5)      /* dA'(i, p) = sum_j W(i, j) B'(p, j) */
+                for (int p = 0; p < k; p++) {
+                    double r = 0;
+                    for (int j = 0; j < n; j++) r += (double)w[(long)i * n + j] * B_(p, j);
+                    double got = ta ? a->grad[(long)p * m + i] : a->grad[(long)i * k + p];
+                    double e = fabs(got - r) / (1e-4 * (1 + fabs(r)));
+                    if (e > worst) worst = e;
+                }
+            for (int p = 0; p < k; p += 3)      /* dB'(p, j) = sum_i A'(i, p) W(i, j) */
+                for (int j = 0; j < n; j++) {
+                    double r = 0;
+                    for (int i = 0; i < m; i++) r += A_(i, p) * w[(long)i * n + j];
+                    double got = tb ? b->grad[(long)j * k + p] : b->grad[(long)p * n + j];
+                    double e = fabs(got - r) / (1e-4 * (1 + fabs(r)));
+                    if (e > worst) worst = e;
+                }
+#undef A_
+#undef B_
+            CHECK(worst <= 1);
+            printf("  threaded matmul %dx%dx%d ta=%d tb=%d  worst error/tolerance %.3f\n", m, n, k, ta, tb, worst);
+            free(w);
+            nn_ctx_free(ctx);
+            nn_params_free(&ps);
+        }
+    nn_set_threads(1);
+}
+
+/* The fused layer on 2 threads (row blocks, split weight-gradient product)
+ * agrees with the unfused ops on one thread: values and all three gradients. */
+static void threaded_linear_check(int rows, int in, int out, nn_activation act)
+{
+    nn_params ps;
+    nn_params_init(&ps);
+    nn_tensor *x = nn_params_add(&ps, rows, in, "x"), *w = nn_params_add(&ps, in, out, "w");
+    nn_tensor *b = nn_params_add(&ps, 1, out, "b");
+    for (long i = 0; i < (long)rows * in; i++) x->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+    for (long i = 0; i < (long)in * out; i++) w->data[i] = (float)((2 * rng_uniform(&gen) - 1) * 0.2);
+    for (int i = 0; i < out; i++) b->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+    float *wl = malloc((size_t)rows * out * sizeof *wl);
+    for (long i = 0; i < (long)rows * out; i++) wl[i] = (float)(2 * rng_uniform(&gen) - 1);
+    size_t nx = (size_t)rows * in, nw = (size_t)in * out;
+    float *ref = malloc((size_t)rows * out * sizeof *ref), *rgx = malloc(nx * sizeof *rgx),
+          *rgw = malloc(nw * sizeof *rgw), *rgb = malloc((size_t)out * sizeof *rgb);
+    nn_ctx *ctx = nn_ctx_create(0);
+    for (int pass = 0; pass < 2; pass++) {
+        nn_set_threads(pass == 0 ? 1 : 2);
+        nn_ctx_reset(ctx);
+        nn_params_zero_grad(&ps);
+        nn_tensor *y = pass == 0 ? nn_activate_ref(ctx, nn_add(ctx, nn_matmul(ctx, x, w), b), act)
+                                 : nn_linear_act(ctx, x, w, b, act, 0.1f);
+        CHECK(y != NULL);
+        if (!y) break;
+        CHECK_INT(nn_backward(ctx, nn_sum(ctx, nn_mul(ctx, y, nn_from(ctx, rows, out, wl)), NN_ALL)), NEUV_OK);
+        if (pass == 0) {
+            memcpy(ref, y->data, (size_t)rows * out * sizeof *ref);
+            memcpy(rgx, x->grad, nx * sizeof *rgx);
+            memcpy(rgw, w->grad, nw * sizeof *rgw);
+            memcpy(rgb, b->grad, (size_t)out * sizeof *rgb);
+            continue;
+        }
+        double worst = 0;
+#define CMP(got, want, n) for (size_t i_ = 0; i_ < (size_t)(n); i_++) { \
+            double e_ = fabs((double)(got)[i_] - (want)[i_]) / (1e-4 * (1 + fabs((want)[i_]))); \
+            if (e_ > worst) worst = e_; }
+        CMP(y->data, ref, (size_t)rows * out);
+        CMP(x->grad, rgx, nx);
+        CMP(w->grad, rgw, nw);
+        CMP(b->grad, rgb, out);
+#undef CMP
+        CHECK(worst <= 1);
+        printf("  threaded linear %dx%d->%d act %d vs unfused  worst error/tolerance %.3f\n", rows, in, out,
+               (int)act, worst);
+    }
+    nn_set_threads(1);
+    free(wl); free(ref); free(rgx); free(rgw); free(rgb);
+    nn_ctx_free(ctx);
     nn_params_free(&ps);
 }
 
@@ -258,7 +409,7 @@ int main(void)
         gradcheck("spmm", g_spmm, 1, &sp, E);
         nn_sparse_free(&sparse);
     }
-    input_spec kink = {4, 5, -1, 1, 0.05f, 0};
+    input_spec kink = {4, 5, -1, 1, 0.05f, 0}; /* |x| >= 0.05: a 5e-3 step cannot cross 0 */
     gradcheck("relu", g_relu, 1, &kink, E);
     gradcheck("leaky_relu", g_leaky, 1, &kink, E);
     gradcheck("tanh", g_tanh, 1, &one, E);
@@ -278,6 +429,16 @@ int main(void)
     input_spec clampin = {4, 5, -1, 1, 0.05f, 0.1f};
     gradcheck("clamp_min", g_clamp, 1, &clampin, E);
     {
+        const char *names[4] = {"linear (none)", "linear (relu)", "linear (leaky_relu)", "linear (tanh)"};
+        for (int a = 0; a < 4; a++) {
+            act_flag = (nn_activation)a;
+            input_spec sp[3] = {{5, 3, -1, 1, 0, 0}, {3, 4, -0.6f, 0.6f, 0, 0}, {1, 4, -0.5f, 0.5f, 0, 0}};
+            accept_inputs = linear_away_from_kink;
+            gradcheck(names[a], g_linear, 3, sp, E);
+            accept_inputs = NULL;
+        }
+    }
+    {
         for (int i = 0; i < 18; i++) evecs[i] = (float)(2 * rng_uniform(&gen) - 1);
         for (int i = 0; i < 3; i++) evals[i] = (float)i * 0.8f;
         for (int i = 0; i < 6; i++) mass[i] = 0.5f + (float)rng_uniform(&gen);
@@ -289,6 +450,11 @@ int main(void)
         if (!ops_seen[op]) fprintf(stderr, "op %s has no gradient check\n", nn_op_name((nn_op)op));
         CHECK(ops_seen[op]);
     }
+    threaded_matmul_check(301, 77, 190);  /* split by rows */
+    threaded_matmul_check(45, 333, 280);  /* split by columns */
+    threaded_linear_check(1000, 70, 90, NN_ACT_LEAKY_RELU); /* 15.6 row blocks: a partial last one */
+    threaded_linear_check(777, 64, 100, NN_ACT_TANH);
+    threaded_linear_check(700, 100, 64, NN_ACT_NONE);
     mlp_check(NN_ACT_LEAKY_RELU, "8-layer MLP (leaky, tanh out)");
     mlp_check(NN_ACT_TANH, "8-layer MLP (tanh, tanh out)");
 

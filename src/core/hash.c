@@ -1,5 +1,7 @@
 #include "core/hash.h"
 
+#include <pthread.h>
+
 uint64_t hash_bytes(uint64_t h, const void *data, size_t n)
 {
     const unsigned char *p = data;
@@ -10,19 +12,24 @@ uint64_t hash_bytes(uint64_t h, const void *data, size_t n)
     return h;
 }
 
-/* CRC-32 (IEEE 802.3, reflected polynomial 0xEDB88320), table built on first use. */
+static uint32_t crc_table[256];
+static pthread_once_t crc_table_once = PTHREAD_ONCE_INIT;
+
+static void crc_table_build(void)
+{
+    for (uint32_t i = 0; i < 256; i++) {
+        uint32_t c = i;
+        for (int k = 0; k < 8; k++) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+        crc_table[i] = c;
+    }
+}
+
+/* CRC-32 (IEEE 802.3, reflected polynomial 0xEDB88320); the table is built
+ * once, safely even when the first calls race on several threads. */
 uint32_t crc32_bytes(uint32_t crc, const void *data, size_t n)
 {
-    static uint32_t table[256];
-    static int ready;
-    if (!ready) {
-        for (uint32_t i = 0; i < 256; i++) {
-            uint32_t c = i;
-            for (int k = 0; k < 8; k++) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            table[i] = c;
-        }
-        ready = 1;
-    }
+    pthread_once(&crc_table_once, crc_table_build);
+    const uint32_t *table = crc_table;
     const unsigned char *p = data;
     crc = ~crc;
     for (size_t i = 0; i < n; i++) crc = table[(crc ^ p[i]) & 0xff] ^ (crc >> 8);

@@ -32,6 +32,7 @@ static const nn_backward_fn backward_rule[NN_OP_COUNT] = {
     [NN_OP_ROW_DOT] = nn_backward_row_dot,
     [NN_OP_ROW_COSINE] = nn_backward_row_cosine,
     [NN_OP_CLAMP_MIN] = nn_backward_unary,
+    [NN_OP_LINEAR] = nn_backward_linear,
 };
 
 /* The tape is in creation order, which is a topological order (an op's inputs

@@ -33,7 +33,7 @@ neuv_status nn_linear_create(nn_linear *l, int in, int out, nn_activation act,
 
 nn_tensor *nn_linear_forward(nn_ctx *ctx, const nn_linear *l, nn_tensor *x)
 {
-    return nn_add(ctx, nn_matmul(ctx, x, l->w), l->b);
+    return nn_linear_act(ctx, x, l->w, l->b, NN_ACT_NONE, 0);
 }
 
 nn_tensor *nn_activate(nn_ctx *ctx, nn_tensor *x, nn_activation act, float leaky_slope)
@@ -60,6 +60,8 @@ neuv_status nn_mlp_create(nn_mlp *m, const nn_mlp_config *cfg, nn_params *params
         return neuv_fail(NEUV_ERR_INPUT, "MLP '%s': dropout is not supported (set it to 0)", prefix);
     m->cfg = *cfg;
     if (m->cfg.leaky_slope == 0) m->cfg.leaky_slope = 0.01f;
+    if (!(m->cfg.leaky_slope > 0 && m->cfg.leaky_slope < 1))
+        return neuv_fail(NEUV_ERR_INPUT, "MLP '%s': LeakyReLU slope %g outside (0, 1)", prefix, m->cfg.leaky_slope);
     m->layers = calloc((size_t)cfg->depth, sizeof *m->layers);
     if (!m->layers) return neuv_fail_nomem("MLP layers");
     m->n = cfg->depth;
@@ -80,9 +82,8 @@ neuv_status nn_mlp_create(nn_mlp *m, const nn_mlp_config *cfg, nn_params *params
 nn_tensor *nn_mlp_forward(nn_ctx *ctx, const nn_mlp *m, nn_tensor *x)
 {
     for (int i = 0; i < m->n; i++) {
-        x = nn_linear_forward(ctx, &m->layers[i], x);
         nn_activation act = i == m->n - 1 ? m->cfg.output : m->cfg.hidden;
-        x = nn_activate(ctx, x, act, m->cfg.leaky_slope);
+        x = nn_linear_act(ctx, x, m->layers[i].w, m->layers[i].b, act, m->cfg.leaky_slope);
     }
     return x;
 }

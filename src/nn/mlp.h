@@ -5,13 +5,6 @@
 #include <stdint.h>
 #include "nn/nn.h"
 
-typedef enum nn_activation {
-    NN_ACT_NONE = 0,
-    NN_ACT_RELU,
-    NN_ACT_LEAKY_RELU,
-    NN_ACT_TANH
-} nn_activation;
-
 /* y = x W + b with W #in by #out and b 1 by #out, both registered in a parameter set. */
 typedef struct nn_linear {
     int in, out;
@@ -25,7 +18,7 @@ typedef struct nn_linear {
 struct rng;
 neuv_status nn_linear_create(nn_linear *l, int in, int out, nn_activation act,
                              struct rng *r, nn_params *params, const char *prefix);
-/* x: #N by in -> #N by out. */
+/* x: #N by in -> #N by out (no activation). */
 nn_tensor *nn_linear_forward(nn_ctx *ctx, const nn_linear *l, nn_tensor *x);
 /* Applies an activation (NN_ACT_NONE returns x). */
 nn_tensor *nn_activate(nn_ctx *ctx, nn_tensor *x, nn_activation act, float leaky_slope);

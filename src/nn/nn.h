@@ -83,17 +83,26 @@ typedef enum nn_op {
     NN_OP_ROW_DOT,        /* sum_j a_ij b_ij, R by 1 */
     NN_OP_ROW_COSINE,     /* dot / (norm_eps(a) norm_eps(b)), R by 1 */
     NN_OP_CLAMP_MIN,      /* max(a, fparam[0]); grad passes where a >= min, else 0 */
+    NN_OP_LINEAR,         /* act(x W + b): src x, W, b; iparam[0] = activation, fparam[0] = slope */
     NN_OP_COUNT
 } nn_op;
 
 enum { NN_ALL = -1, NN_ROWS = 0, NN_COLS = 1 }; /* reduction axes */
+
+/* Activations of the fused linear op and of the layers in nn/mlp.h. */
+typedef enum nn_activation {
+    NN_ACT_NONE = 0,
+    NN_ACT_RELU,
+    NN_ACT_LEAKY_RELU,
+    NN_ACT_TANH
+} nn_activation;
 
 typedef struct nn_tensor {
     int rows, cols;          /* row-major, element (i, j) at data[i*cols + j] */
     float *data;
     float *grad;             /* same shape; NULL until backward reaches it (params: always) */
     nn_op op;
-    struct nn_tensor *src[2];
+    struct nn_tensor *src[3];
     int iparam[2];
     float fparam[1];
     const void *aux;         /* borrowed: const int *index (gather/scatter), const nn_sparse * */
@@ -191,6 +200,14 @@ nn_tensor *nn_row_cosine(nn_ctx *ctx, nn_tensor *a, nn_tensor *b, float eps);
  * (as torch.clamp); keep learned quantities positive by clamping in the forward pass. */
 nn_tensor *nn_clamp_min(nn_ctx *ctx, nn_tensor *a, float min);
 
+/* Fused layer y = act(x W + b): x #N by in, W in by out, b 1 by out. Same values
+ * and gradients as nn_activate(nn_add(nn_matmul(x, W), b)) but the bias, the
+ * activation and their gradients (and the bias's column sums) each take one
+ * pass over the #N by out result instead of two or three. leaky_slope must be
+ * > 0 for NN_ACT_LEAKY_RELU (the backward reads the sign from the output). */
+nn_tensor *nn_linear_act(nn_ctx *ctx, nn_tensor *x, nn_tensor *w, nn_tensor *b, nn_activation act,
+                         float leaky_slope);
+
 /* ---- fixed sparse matrices (gradient operators, mass) --------------- */
 
 /* Float32 CSR copy of a geometry operator plus its transpose (for the backward
@@ -217,8 +234,12 @@ const char *nn_op_name(nn_op op);
 
 /* ---- threads --------------------------------------------------------- */
 
-/* Sets OpenMP threads (element-wise work above a size threshold) and OpenBLAS
- * threads (products) together; n <= 0 means all cores. */
+/* Sets the OpenMP threads and the OpenBLAS threads together; n <= 0 means all
+ * cores. Element-wise loops above a size threshold and large products both run
+ * on the OpenMP threads (a product is cut into row or column blocks, each one
+ * single-threaded OpenBLAS call), because OpenBLAS's own pthread pool and
+ * libgomp's pool spin-wait and steal each other's cores when they alternate.
+ * OpenBLAS's thread count still applies to BLAS calls made outside nn. */
 void nn_set_threads(int n);
 int nn_get_threads(void);
 

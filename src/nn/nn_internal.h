@@ -9,6 +9,12 @@
  * start-up costs more than the work). */
 #define NN_PAR_MIN 32768
 
+/* On a function whose loops select between floats (LeakyReLU): without it gcc
+ * keeps them scalar, because a select after a comparison that may raise an FP
+ * flag is not if-converted under -ftrapping-math. neuv never reads FP flags.
+ * noinline: inlined into a caller without the attribute, the loops lose it. */
+#define NN_VECTORIZE __attribute__((optimize("no-trapping-math"), noinline))
+
 /* Records the first failure of this ctx (message kept) and returns NULL. */
 nn_tensor *nn_ctx_fail(nn_ctx *ctx, neuv_status code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
@@ -34,6 +40,7 @@ double nn_reduce_all(nn_ctx *ctx, const float *x, size_t n);
 /* Backward rules: one per op, defined beside the op's forward. */
 typedef void (*nn_backward_fn)(nn_ctx *ctx, nn_tensor *t);
 void nn_backward_matmul(nn_ctx *, nn_tensor *);
+void nn_backward_linear(nn_ctx *, nn_tensor *);
 void nn_backward_spmm(nn_ctx *, nn_tensor *);
 void nn_backward_binary(nn_ctx *, nn_tensor *);      /* add, sub, mul, div */
 void nn_backward_unary(nn_ctx *, nn_tensor *);       /* element-wise one-input ops */

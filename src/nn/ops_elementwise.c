@@ -197,7 +197,7 @@ static inline float derivative_unary(nn_op op, float x, float y, float p)
     _Pragma("omp parallel for simd if (n > NN_PAR_MIN) schedule(static)")           \
     for (long i = 0; i < n; i++) { float xv = x[i]; y[i] = EXPR; }
 
-static nn_tensor *unary(nn_ctx *ctx, nn_op op, nn_tensor *a, float p)
+NN_VECTORIZE static nn_tensor *unary(nn_ctx *ctx, nn_op op, nn_tensor *a, float p)
 {
     if (!a) return NULL;
     nn_tensor *t = nn_node(ctx, op, a->rows, a->cols, a, NULL);
@@ -222,7 +222,7 @@ static nn_tensor *unary(nn_ctx *ctx, nn_op op, nn_tensor *a, float p)
     return t;
 }
 
-void nn_backward_unary(nn_ctx *ctx, nn_tensor *t)
+NN_VECTORIZE void nn_backward_unary(nn_ctx *ctx, nn_tensor *t)
 {
     nn_tensor *a = t->src[0];
     int acc = 0;

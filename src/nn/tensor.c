@@ -171,6 +171,7 @@ nn_tensor *nn_node(nn_ctx *ctx, nn_op op, int rows, int cols, nn_tensor *a, nn_t
     t->src[0] = a;
     t->src[1] = b;
     t->requires_grad = (a && a->requires_grad) || (b && b->requires_grad);
+    t->src[2] = NULL;
     t->prev = ctx->tail;
     ctx->tail = t;
     return t;
@@ -333,7 +334,7 @@ const char *nn_op_name(nn_op op)
         [NN_OP_TANH] = "tanh", [NN_OP_SIGMOID] = "sigmoid", [NN_OP_SOFTMAX_ROWS] = "softmax_rows",
         [NN_OP_EXP] = "exp", [NN_OP_LOG] = "log", [NN_OP_SQRT] = "sqrt", [NN_OP_SQUARE] = "square",
         [NN_OP_ROW_NORM] = "row_norm", [NN_OP_ROW_DOT] = "row_dot", [NN_OP_ROW_COSINE] = "row_cosine",
-        [NN_OP_CLAMP_MIN] = "clamp_min",
+        [NN_OP_CLAMP_MIN] = "clamp_min", [NN_OP_LINEAR] = "linear",
     };
     if ((int)op < 0 || op >= NN_OP_COUNT || !names[op]) return "unknown";
     return names[op];
