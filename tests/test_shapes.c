@@ -92,6 +92,16 @@ int main(void)
     CHECK_NEAR(mesh_signed_volume(m, NULL, 0), 2 * M_PI * M_PI * 2.0 * 0.25, 0.01 * M_PI * M_PI);
     mesh_free(m);
 
+    /* Bumpy torus (the demo shape): genus 1, outward; volume 2 pi^2 R r^2 (1 + b^2/4)
+     * since the bumps' odd harmonics cancel against cos w in the volume integral. */
+    m = shape_bumpy_torus(1.0, 0.4, 0.25, 96, 40);
+    t = topo(m);
+    CHECK_INT(t.genus, 1); CHECK(t.closed);
+    CHECK(oriented_manifold(m, 1)); CHECK(min_area_positive(m));
+    CHECK_NEAR(mesh_signed_volume(m, NULL, 0), 2 * M_PI * M_PI * 0.16 * (1 + 0.25 * 0.25 / 4),
+               0.02 * 2 * M_PI * M_PI * 0.16);
+    mesh_free(m);
+
     /* Grid: disk, one loop of 2(nx+ny) edges, area w h, identity UVs. */
     m = shape_grid(8, 5, 2.0, 1.0, 1);
     CHECK_INT(m->nv, 9 * 6); CHECK_INT(m->nf, 80);

@@ -1,5 +1,5 @@
 /* neuv demo [-o DIR]: the whole pipeline on a built-in procedural shape
- * (a genus-2 surface: closed, with handles, so charts must be cut). */
+ * (a bumpy torus: closed, curved everywhere, with a handle, so charts must be cut). */
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
@@ -23,7 +23,7 @@ int cmd_demo(int argc, char **argv)
     if (bad) return 2;
     if (mkdir(dir, 0755) != 0 && errno != EEXIST) return cli_error(dir, "cannot create folder: %s", strerror(errno));
 
-    neuv_mesh *mesh = shape_genus2(6);
+    neuv_mesh *mesh = shape_bumpy_torus(1.0, 0.4, 0.25, 96, 40);
     if (!mesh) return cli_error(NULL, "out of memory");
     char input[4096], output[4096], report[4096], preview[4096];
     snprintf(input, sizeof input, "%s/demo-input.obj", dir);
@@ -33,7 +33,7 @@ int cmd_demo(int argc, char **argv)
     neuv_status s = neuv_mesh_save(mesh, input);
     if (s != NEUV_OK) { neuv_mesh_free(mesh); return cli_fail(input, s); }
     if (!cli_opts.quiet)
-        printf("neuv demo: genus-2 surface, %d vertices, %d faces (written to %s)\n", neuv_mesh_vertex_count(mesh),
+        printf("neuv demo: bumpy torus, %d vertices, %d faces (written to %s)\n", neuv_mesh_vertex_count(mesh),
                neuv_mesh_face_count(mesh), input);
 
     neuv_unwrap_options o;

@@ -215,6 +215,22 @@ neuv_mesh *shape_torus(double R, double r, int nu, int nv)
     return m;
 }
 
+neuv_mesh *shape_bumpy_torus(double R, double r, double bump, int nu, int nv)
+{
+    neuv_mesh *m = shape_torus(R, r, nu, nv);
+    if (!m) return NULL;
+    /* Move each vertex along the tube's normal by a smooth product of
+     * sines: 5 bumps around the ring, 3 around the tube. */
+    for (int i = 0; i < nu; i++)
+        for (int j = 0; j < nv; j++) {
+            double u = 2.0 * M_PI * i / nu, w = 2.0 * M_PI * j / nv;
+            double rr = r * (1.0 + bump * sin(5.0 * u) * sin(3.0 * w));
+            double rho = R + rr * cos(w);
+            set_pos(m, i * nv + j, rho * cos(u), rho * sin(u), rr * sin(w));
+        }
+    return m;
+}
+
 neuv_mesh *shape_grid(int nx, int ny, double w, double h, int with_uv)
 {
     if (nx < 1 || ny < 1) return NULL;

@@ -13,6 +13,9 @@ neuv_mesh *shape_icosphere(int level, double radius);
 neuv_mesh *shape_uv_sphere(int slices, int stacks, double radius);
 /* Torus around z: major radius R, minor radius r, nu by nv quads split in two. */
 neuv_mesh *shape_torus(double R, double r, int nu, int nv);
+/* A torus whose tube radius varies smoothly, r (1 + bump sin 5u sin 3v):
+ * curved everywhere, genus 1 (the demo shape). */
+neuv_mesh *shape_bumpy_torus(double R, double r, double bump, int nu, int nv);
 /* Flat grid in z = 0 over [0,w] by [0,h] with nx by ny cells (each split in two);
  * with_uv: per-corner UVs equal to (x, y) (identity map). */
 neuv_mesh *shape_grid(int nx, int ny, double w, double h, int with_uv);
