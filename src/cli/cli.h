@@ -23,6 +23,11 @@ void cli_install_callbacks(void);
 /* Ends a progress line so the next output starts on a fresh line. */
 void cli_progress_done(void);
 
+struct json_writer;
+/* Prints the finished JSON document on stdout and frees the writer; returns
+ * the exit code (1 when the writer ran out of memory). */
+int cli_print_json(struct json_writer *w);
+
 /* Argument helpers: return 1 when argv[*i] is `name` and consume its value
  * into *out (advancing *i); print an error and set *bad when the value is
  * missing or malformed. */

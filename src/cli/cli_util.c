@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/json_writer.h"
 #include "core/timer.h"
 
 cli_options cli_opts;
@@ -176,5 +177,14 @@ int cli_check_output_folder(const char *out)
     dir[n] = '\0';
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) return cli_error(out, "folder %s does not exist", dir);
     if (access(dir, W_OK) != 0) return cli_error(out, "folder %s is not writable", dir);
+    return 0;
+}
+
+int cli_print_json(json_writer *w)
+{
+    int failed = w->failed;
+    if (!failed) printf("%s\n", json_text(w));
+    json_free(w);
+    if (failed) { cli_error(NULL, "out of memory writing the JSON report"); return 1; }
     return 0;
 }

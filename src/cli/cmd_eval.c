@@ -54,11 +54,7 @@ static int print_json(const char *path, const neuv_mesh *m, const uv_metrics *mt
     uv_metrics_write_json(mt, &w);
     json_end_object(&w);
     json_end_object(&w);
-    int failed = w.failed;
-    if (!failed) printf("%s\n", json_text(&w));
-    json_free(&w);
-    if (failed) { cli_error(NULL, "out of memory writing the JSON report"); return 1; }
-    return 0;
+    return cli_print_json(&w);
 }
 
 static int parse_color(const char *s, preview_color *out)

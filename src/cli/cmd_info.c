@@ -98,11 +98,7 @@ static int print_json(const char *path, int in_nv, int in_nf, const neuv_mesh *m
     for (int i = 0; i < n; i++) { json_key(&w, f[i].key); json_int(&w, f[i].value); }
     json_end_object(&w);
     json_end_object(&w);
-    int failed = w.failed;
-    if (!failed) printf("%s\n", json_text(&w));
-    json_free(&w);
-    if (failed) { cli_error(NULL, "out of memory writing the JSON report"); return 1; }
-    return 0;
+    return cli_print_json(&w);
 }
 
 int cmd_info(int argc, char **argv)

@@ -87,11 +87,7 @@ static int print_json(const run_info *r, const operators *o)
     json_key(&w, "hit"); json_bool(&w, r->cache_hit);
     json_end_object(&w);
     json_end_object(&w);
-    int failed = w.failed;
-    if (!failed) printf("%s\n", json_text(&w));
-    json_free(&w);
-    if (failed) { cli_error(NULL, "out of memory writing the JSON report"); return 1; }
-    return 0;
+    return cli_print_json(&w);
 }
 
 int cmd_operators(int argc, char **argv)
