@@ -23,6 +23,13 @@ void cli_install_callbacks(void);
 /* Ends a progress line so the next output starts on a fresh line. */
 void cli_progress_done(void);
 
+struct neuv_mesh;
+struct mesh_clean_report;
+/* Loads `in` and cleans it (mesh_clean). On failure prints the one-line
+ * error, frees everything, leaves *out NULL and returns the exit code;
+ * returns 0 on success. A mesh whose faces all were degenerate is an error. */
+int cli_load_clean(const char *in, struct neuv_mesh **out, struct mesh_clean_report *report);
+
 struct json_writer;
 /* Prints the finished JSON document on stdout and frees the writer; returns
  * the exit code (1 when the writer ran out of memory). */

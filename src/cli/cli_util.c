@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/json_writer.h"
+#include "mesh/clean.h"
 #include "core/timer.h"
 
 cli_options cli_opts;
@@ -186,5 +187,17 @@ int cli_print_json(json_writer *w)
     if (!failed) printf("%s\n", json_text(w));
     json_free(w);
     if (failed) { cli_error(NULL, "out of memory writing the JSON report"); return 1; }
+    return 0;
+}
+
+int cli_load_clean(const char *in, neuv_mesh **out, mesh_clean_report *report)
+{
+    *out = NULL;
+    neuv_mesh *m = NULL;
+    neuv_status st = neuv_mesh_load(in, &m);
+    if (st != NEUV_OK) return cli_fail(in, st);
+    if ((st = mesh_clean(m, NULL, report)) != NEUV_OK) { mesh_free(m); return cli_fail(in, st); }
+    if (m->nf == 0) { mesh_free(m); return cli_error(in, "no faces left after cleaning (every face was degenerate)"); }
+    *out = m;
     return 0;
 }

@@ -54,10 +54,10 @@ int cmd_flatten(int argc, char **argv)
 
     double t0 = now_seconds();
     neuv_mesh *m = NULL;
-    neuv_status st = neuv_mesh_load(in, &m);
-    if (st) return cli_fail(in, st);
     mesh_clean_report rep;
-    if ((st = mesh_clean(m, NULL, &rep))) { mesh_free(m); return cli_fail(in, st); }
+    int rc = cli_load_clean(in, &m, &rep);
+    if (rc) return rc;
+    neuv_status st;
     if ((st = flatten_require_disk(m, NULL, NULL))) { mesh_free(m); return cli_fail(in, st); }
     double *uv = malloc(sizeof(double) * 2 * (size_t)m->nv);
     if (!uv) { mesh_free(m); return cli_error(in, "out of memory"); }

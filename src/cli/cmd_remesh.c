@@ -46,11 +46,10 @@ int cmd_remesh(int argc, char **argv)
 
     double t0 = now_seconds();
     neuv_mesh *m = NULL;
-    neuv_status st = neuv_mesh_load(in, &m);
-    if (st) return cli_fail(in, st);
     mesh_clean_report rep;
-    if ((st = mesh_clean(m, NULL, &rep))) { mesh_free(m); return cli_fail(in, st); }
-    if (m->nf == 0) { mesh_free(m); return cli_error(in, "no faces left after cleaning"); }
+    int rc = cli_load_clean(in, &m, &rep);
+    if (rc) return rc;
+    neuv_status st;
     printf("%s: %d vertices, %d faces%s\n", in, m->nv, m->nf, m->nuv > 0 ? ", with UVs" : "");
     if (have_simplify) {
         neuv_mesh *s;

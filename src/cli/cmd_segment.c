@@ -71,11 +71,10 @@ int cmd_segment(int argc, char **argv)
 
     double t0 = now_seconds();
     neuv_mesh *m = NULL;
-    neuv_status st = neuv_mesh_load(in, &m);
-    if (st) return cli_fail(in, st);
-    if (m->nf == 0) { mesh_free(m); return cli_error(in, "no faces: segmentation needs a triangle mesh, not a point cloud"); }
     mesh_clean_report crep;
-    if ((st = mesh_clean(m, NULL, &crep))) { mesh_free(m); return cli_fail(in, st); }
+    int rc = cli_load_clean(in, &m, &crep);
+    if (rc) return rc;
+    neuv_status st;
     double t_load = now_seconds() - t0;
     double t1 = now_seconds();
     operators ops;
