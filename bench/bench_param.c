@@ -7,10 +7,11 @@
  *       keys: width depth iters lambda_angle lambda_area warmup late_angle late_area
  *             psi=pooled|vertex iso=0|1 seed face_points iso_pairs min_iters paper=1
  *
- * Charts: k-means (K clusters, farthest-point start, 10 Lloyd rounds) of the
- * unit face normals, then charts_from_labels (connected disks). ψ has no
- * DiffusionNet features yet: the feature-free code (chart centroid and mean
- * normal; per-vertex: position and normal). Each configuration runs once (a
+ * Charts: "auto" (default) = the pipeline's PatchNet charts and DiffusionNet
+ * features (cached in bench_param_<mesh>.charts); a number K = k-means of the
+ * unit face normals then charts_from_labels, with the feature-free ψ. Each
+ * network map is checked per chart with chart_uv_check_run, as the repair
+ * stage does, and failing charts are replaced by LSCM. Each configuration runs once (a
  * training run is seconds to minutes; medians would multiply that); LSCM is
  * the reference measured in the same run. */
 #include <math.h>
@@ -21,6 +22,10 @@
 #include "charts/charts.h"
 #include "core/timer.h"
 #include "flatten/lscm.h"
+#include "geometry/operator_cache.h"
+#include "geometry/operators.h"
+#include "models/patchnet.h"
+#include "unwrap/chart_uv_check.h"
 #include "mesh/clean.h"
 #include "mesh/shapes.h"
 #include "metrics/uv_metrics.h"
@@ -102,6 +107,79 @@ static int corner_metrics(const neuv_mesh *m, const double *corner_uv, uv_metric
     return ok ? 0 : -1;
 }
 
+
+/* The pipeline's charts and features: operators, PatchNet (default options,
+ * seed 1), as `neuv unwrap` computes them; cached in `cache` (a binary file:
+ * nf, n_charts, dim, face_chart, features) because PatchNet takes seconds. */
+static int pipeline_charts(const neuv_mesh *m, const char *cache, int *chart, int *nc, float **feat, int *dim)
+{
+    FILE *fp = fopen(cache, "rb");
+    int hdr[3];
+    if (fp && fread(hdr, sizeof hdr, 1, fp) == 1 && hdr[0] == m->nf) {
+        *nc = hdr[1]; *dim = hdr[2];
+        *feat = hdr[2] > 0 ? malloc((size_t)m->nv * hdr[2] * sizeof(float)) : NULL;
+        int ok = fread(chart, sizeof(int), (size_t)m->nf, fp) == (size_t)m->nf &&
+                 (!*feat || fread(*feat, sizeof(float), (size_t)m->nv * hdr[2], fp) == (size_t)m->nv * hdr[2]);
+        fclose(fp);
+        if (ok) return 0;
+        free(*feat);
+    } else if (fp) fclose(fp);
+    operators ops;
+    memset(&ops, 0, sizeof ops);
+    operators_params op = operators_default_params();
+    patchnet_options po;
+    patchnet_default_options(&po);
+    po.seed = 1;
+    if (operators_get(m, &op, 1, &ops, NULL, NULL) != NEUV_OK ||
+        patchnet_segment(m, &ops, &po, chart, nc, feat, dim, NULL) != NEUV_OK)
+        return -1;
+    operators_free(&ops);
+    fp = fopen(cache, "wb");
+    if (fp) {
+        hdr[0] = m->nf; hdr[1] = *nc; hdr[2] = *feat ? *dim : 0;
+        fwrite(hdr, sizeof hdr, 1, fp);
+        fwrite(chart, sizeof(int), (size_t)m->nf, fp);
+        if (*feat) fwrite(*feat, sizeof(float), (size_t)m->nv * *dim, fp);
+        fclose(fp);
+    }
+    return 0;
+}
+
+/* What the pipeline's repair stage sees: per chart, the corner UVs copied to
+ * the chart's vertices and chart_uv_check_run; failing charts are replaced by
+ * LSCM in `corner_uv` (as the repair stage does) so that the metrics after
+ * this call are those of the repaired atlas. */
+typedef struct chart_tally { int ok, flipped, degenerate, crossings; } chart_tally;
+
+static int check_and_repair(const neuv_mesh *m, const int *chart, int nc, double *corner_uv, chart_tally *t)
+{
+    memset(t, 0, sizeof *t);
+    for (int c = 0; c < nc; c++) {
+        neuv_mesh *sub; int *vmap, *fmap;
+        if (chart_submesh(m, chart, c, &sub, &vmap, &fmap) != NEUV_OK) return -1;
+        double *uv = malloc((size_t)sub->nv * 2 * sizeof(double));
+        if (!uv) return -1;
+        for (int f = 0; f < sub->nf; f++)
+            for (int k = 0; k < 3; k++)
+                for (int q = 0; q < 2; q++) uv[2 * sub->tri[3 * f + k] + q] = corner_uv[6 * fmap[f] + 2 * k + q];
+        chart_uv_check chk;
+        int ok = chart_uv_check_run(sub, uv, &chk);
+        if (ok < 0) return -1;
+        t->ok += ok;
+        if (!ok && getenv("BENCH_VERBOSE"))
+            fprintf(stderr, "    chart %d (%d faces): %d flipped, %d degenerate, %d crossings\n", c, sub->nf, chk.flipped,
+                    chk.degenerate, chk.boundary_crossings);
+        t->flipped += chk.flipped; t->degenerate += chk.degenerate; t->crossings += chk.boundary_crossings;
+        if (!ok && lscm(sub, uv) != NEUV_OK) return -1;
+        if (!ok)
+            for (int f = 0; f < sub->nf; f++)
+                for (int k = 0; k < 3; k++)
+                    for (int q = 0; q < 2; q++) corner_uv[6 * fmap[f] + 2 * k + q] = uv[2 * sub->tri[3 * f + k] + q];
+        free(uv); free(vmap); free(fmap); mesh_free(sub);
+    }
+    return 0;
+}
+
 static int lscm_charts(const neuv_mesh *m, const int *chart, int nc, double *corner_uv)
 {
     for (int c = 0; c < nc; c++) {
@@ -117,15 +195,23 @@ static int lscm_charts(const neuv_mesh *m, const int *chart, int nc, double *cor
     return 0;
 }
 
-static void print_row(const char *name, double sec, int iters, const uv_metrics *mt, const param_net_report *rep)
+static const float *g_feat; /* pipeline features (NULL: feature-free ψ) */
+static int g_dim;
+
+static void print_row(const char *name, double sec, int iters, int nc, const chart_tally *t, const uv_metrics *raw,
+                      const uv_metrics *fin, const param_net_report *rep)
 {
-    printf("| %s | %.2f | %d | %.1f | %.4f | %.4f | %d | %s |\n", name, sec, iters,
-           iters > 0 && rep ? iters / rep->train_seconds : 0.0, mt->qce_mean, mt->ase_abs_mean, mt->flipped,
-           rep ? "" : "(reference)");
     if (rep)
-        fprintf(stderr, "  %s: params/MLP %ld, pairs %ld, plateau %d, loss %.5f (cycle %.2e iso %.2e angle %.2e area %.2e), cycle_rms %.4f, setup %.2fs\n",
+        printf("| %s | %.1f | %d | %d/%d | %d | %d | %d | %.4f | %.4f | %.4f |\n", name, sec, iters, t->ok, nc,
+               t->flipped, t->degenerate, t->crossings, raw->qce_mean, fin->qce_mean, fin->ase_abs_mean);
+    else
+        printf("| %s | %.2f | – | – | %d | – | – | %.4f | %.4f | %.4f |\n", name, sec, raw->flipped, raw->qce_mean,
+               raw->qce_mean, raw->ase_abs_mean);
+    if (rep)
+        fprintf(stderr, "  %s: params/MLP %ld, pairs %ld, plateau %d, loss %.5f (cycle %.2e iso %.2e angle %.2e area %.2e barrier %.2e), cycle_rms %.4f, setup %.2fs, train %.2fs\n",
                 name, rep->parameters, rep->pairs, rep->stopped_on_plateau, rep->loss, rep->loss_cycle,
-                rep->loss_iso, rep->loss_angle, rep->loss_area, rep->cycle_rms, rep->setup_seconds);
+                rep->loss_iso, rep->loss_angle, rep->loss_area, rep->loss_barrier, rep->cycle_rms, rep->setup_seconds,
+                rep->train_seconds);
     fflush(stdout);
 }
 
@@ -134,14 +220,16 @@ static int run(const neuv_mesh *m, const int *chart, int nc, const char *name, c
     double *uv = malloc((size_t)m->nf * 6 * sizeof(double));
     param_net_report rep;
     double t0 = now_seconds();
-    if (!uv || param_net_flatten(m, chart, nc, NULL, 0, o, uv, &rep) != NEUV_OK) {
+    if (!uv || param_net_flatten(m, chart, nc, g_feat, g_dim, o, uv, &rep) != NEUV_OK) {
         fprintf(stderr, "%s: %s\n", name, neuv_last_error());
         return 1;
     }
     double t = now_seconds() - t0;
-    uv_metrics mt;
-    if (corner_metrics(m, uv, &mt)) return 1;
-    print_row(name, t, rep.iters, &mt, &rep);
+    uv_metrics raw, fin;
+    chart_tally tally;
+    if (corner_metrics(m, uv, &raw) || check_and_repair(m, chart, nc, uv, &tally) || corner_metrics(m, uv, &fin))
+        return 1;
+    print_row(name, t, rep.iters, nc, &tally, &raw, &fin, &rep);
     free(uv);
     return 0;
 }
@@ -169,6 +257,9 @@ static void apply_key(param_net_options *o, const char *kv)
     else if (KEY("iso_pairs")) o->iso_pairs = (int)v;
     else if (KEY("radius")) o->radius = v;
     else if (KEY("lr")) o->lr = (float)v;
+    else if (KEY("fold")) o->lambda_fold = v;
+    else if (KEY("lr_final")) o->lr_final = v;
+    else if (KEY("fold_eps")) o->fold_eps = v;
     else if (KEY("psi")) o->psi_mode = !strcmp(eq + 1, "vertex") ? PARAM_PSI_PER_VERTEX : PARAM_PSI_POOLED;
     else fprintf(stderr, "unknown key %s\n", kv);
 #undef KEY
@@ -177,8 +268,9 @@ static void apply_key(param_net_options *o, const char *kv)
 int main(int argc, char **argv)
 {
     const char *path = argc > 1 ? argv[1] : "../shared/meshes/spot.obj";
-    int k = argc > 2 ? atoi(argv[2]) : 12;
-    int threads = argc > 3 ? atoi(argv[3]) : 2;
+    const char *charts_arg = argc > 2 ? argv[2] : "auto";
+    int k = atoi(charts_arg);
+    int threads = argc > 3 ? atoi(argv[3]) : 1;
     nn_set_threads(threads);
     neuv_mesh *m = NULL;
     if (!strcmp(path, "grid")) m = shape_grid(16, 16, 1.0, 1.0, 0); /* tuning shapes, one chart each (K = 1) */
@@ -188,20 +280,33 @@ int main(int argc, char **argv)
         return 1;
     }
     int *label = malloc((size_t)m->nf * sizeof(int)), *chart = malloc((size_t)m->nf * sizeof(int)), nc;
-    if (!label || !chart || (k > 1 ? kmeans_normals(m, k, label) : (memset(label, 0, (size_t)m->nf * sizeof(int)), 0)) || charts_from_labels(m, label, NULL, chart, &nc, NULL) != NEUV_OK) {
+    float *feat = NULL;
+    if (!label || !chart) return 1;
+    if (!strcmp(charts_arg, "auto")) {
+        /* The pipeline's charts and DiffusionNet features. */
+        const char *base = strrchr(path, '/');
+        char cache[512];
+        snprintf(cache, sizeof cache, "bench_param_%s.charts", base ? base + 1 : path);
+        if (pipeline_charts(m, cache, chart, &nc, &feat, &g_dim)) {
+            fprintf(stderr, "charts: %s\n", neuv_last_error());
+            return 1;
+        }
+        g_feat = feat;
+    } else if ((k > 1 ? kmeans_normals(m, k, label) : (memset(label, 0, (size_t)m->nf * sizeof(int)), 0)) ||
+               charts_from_labels(m, label, NULL, chart, &nc, NULL) != NEUV_OK) {
         fprintf(stderr, "charts: %s\n", neuv_last_error());
         return 1;
     }
-    printf("%s: %d vertices, %d faces, %d charts (k-means K=%d of face normals), %d threads\n\n", path, m->nv,
-           m->nf, nc, k, threads);
-    printf("| configuration | seconds | iterations | it/s | qce_mean | ase_abs_mean | flipped | |\n|---|---|---|---|---|---|---|---|\n");
+    printf("%s: %d vertices, %d faces, %d charts (%s), ψ from %s, %d threads\n\n", path, m->nv, m->nf, nc,
+           g_feat ? "PatchNet, as neuv unwrap" : "k-means of face normals", g_feat ? "DiffusionNet features" : "chart centroid and normal", threads);
+    printf("| configuration | seconds | iterations | injective charts | flipped | degenerate | boundary crossings | qce_mean (network) | qce_mean (after repair) | ase_abs_mean (after repair) |\n|---|---|---|---|---|---|---|---|---|---|\n");
     double *uv = malloc((size_t)m->nf * 6 * sizeof(double));
     double t0 = now_seconds();
     if (!uv || lscm_charts(m, chart, nc, uv)) { fprintf(stderr, "lscm: %s\n", neuv_last_error()); return 1; }
     double tl = now_seconds() - t0;
     uv_metrics mt;
     if (corner_metrics(m, uv, &mt)) return 1;
-    print_row("LSCM", tl, 0, &mt, NULL);
+    print_row("LSCM (reference)", tl, 0, nc, NULL, &mt, &mt, NULL);
     free(uv);
 
     param_net_options o;
@@ -217,10 +322,12 @@ int main(int argc, char **argv)
     a = o;
     a.psi_mode = PARAM_PSI_PER_VERTEX;
     rc |= run(m, chart, nc, "fast, per-vertex ψ (ablation)", &a);
-    param_net_options p;
-    param_net_default_options(&p, PARAM_PRESET_PAPER);
-    if (argc > 4) p.iters = atoi(argv[4]);
-    rc |= run(m, chart, nc, "neural paper", &p);
-    free(label); free(chart); mesh_free(m);
+    if (argc > 4) {
+        param_net_options p;
+        param_net_default_options(&p, PARAM_PRESET_PAPER);
+        p.iters = atoi(argv[4]);
+        rc |= run(m, chart, nc, "neural paper", &p);
+    }
+    free(label); free(chart); free(feat); mesh_free(m);
     return rc;
 }

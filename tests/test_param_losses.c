@@ -1,5 +1,6 @@
-/* The parameterization losses: hand-checkable values (the identity map of a
- * flat chart costs nothing; a uniform scaling costs what the formulas say) and
+/* The parameterization losses and the fold barrier: hand-checkable values (the
+ * identity map of a flat chart costs nothing; a uniform scaling costs what the
+ * formulas say) and
  * finite-difference gradients of each loss with respect to the UVs. */
 #include "check.h"
 
@@ -31,6 +32,13 @@ static nn_tensor *f_area(nn_ctx *ctx, nn_tensor *uv, void *u)
 {
     fixture *f = u;
     return param_loss_area(ctx, uv, &f->c, nn_from(ctx, f->c.nf, 1, f->area3d), nn_from(ctx, f->c.nf, 1, f->orient));
+}
+/* The fold barrier with ε = 0.05. */
+static nn_tensor *f_fold(nn_ctx *ctx, nn_tensor *uv, void *u)
+{
+    fixture *f = u;
+    return param_loss_fold_barrier(ctx, uv, &f->c, nn_from(ctx, f->c.nf, 1, f->area3d),
+                                   nn_from(ctx, f->c.nf, 1, f->orient), 0.05f);
 }
 /* L_cycle with the "reconstruction" a fixed smooth function of uv (uv, uv0 uv1), so that
  * the gradient reaches uv through both of x_rec's columns. */
@@ -120,6 +128,7 @@ int main(void)
     CHECK_NEAR(f_iso(ctx, t, &f)->data[0], 0, 1e-12);
     CHECK_NEAR(f_angle(ctx, t, &f)->data[0], 0, 1e-10);
     CHECK_NEAR(f_area(ctx, t, &f)->data[0], 0, 1e-14);
+    CHECK_NEAR(f_fold(ctx, t, &f)->data[0], 0, 1e-14);
     /* x_rec = (u, v, u v) against x = (x, y, 0): L_cycle = mean (x y)². */
     double cyc = 0;
     for (int v = 0; v < nv; v++) cyc += pow(m->pos[3 * v] * m->pos[3 * v + 1], 2);
@@ -136,6 +145,7 @@ int main(void)
     double a2 = 0;
     for (int i = 0; i < nf; i++) a2 += 9.0 * f.area3d[i] * f.area3d[i];
     CHECK_NEAR(f_area(ctx, t2, &f)->data[0], a2 / nf, 1e-9);
+    CHECK_NEAR(f_fold(ctx, t2, &f)->data[0], 0, 1e-14); /* area ratio 4: above ε */
     /* A mirror image keeps lengths and angles but flips every face: with the
      * chart orientation +1, each face pays (−a − a)² = 4a². */
     for (int v = 0; v < nv; v++) { uv2[2 * v] = -uv[2 * v]; uv2[2 * v + 1] = uv[2 * v + 1]; }
@@ -143,6 +153,22 @@ int main(void)
     CHECK_NEAR(f_iso(ctx, tm, &f)->data[0], 0, 1e-12);
     CHECK_NEAR(f_angle(ctx, tm, &f)->data[0], 0, 1e-10);
     CHECK_NEAR(f_area(ctx, tm, &f)->data[0], 4.0 * a2 / 9.0 / nf, 1e-9);
+    /* ... and the barrier sees area ratio −1 on every face: (ε + 1)². */
+    CHECK_NEAR(f_fold(ctx, tm, &f)->data[0], 1.05 * 1.05, 1e-5);
+    /* Half the size, not flipped: ratio 1/4, above ε, free; a face squashed to
+     * ratio 0.01 pays (0.05 − 0.01)² / #F. */
+    for (int i = 0; i < 2 * nv; i++) uv2[i] = 0.5f * uv[i];
+    CHECK_NEAR(f_fold(ctx, nn_from(ctx, nv, 2, uv2), &f)->data[0], 0, 1e-14);
+    {
+        int tri[3] = {0, 1, 2};
+        param_corners c1;
+        CHECK_INT(param_corners_build(tri, 1, &c1), NEUV_OK);
+        float q[6] = {0, 0, 1, 0, 0, 0.01f}, a3[1] = {0.5f}, o1[1] = {1};
+        nn_tensor *l = param_loss_fold_barrier(ctx, nn_from(ctx, 3, 2, q), &c1, nn_from(ctx, 1, 1, a3),
+                                               nn_from(ctx, 1, 1, o1), 0.05f);
+        CHECK_NEAR(l->data[0], 0.04 * 0.04, 1e-7);
+        param_corners_free(&c1);
+    }
     /* Shearing one corner angle: angle loss of one right triangle by hand.
      * Triangle (0,0) (1,0) (0,1) mapped to (0,0) (1,0) (1,1): corner cosines
      * 3D (0, 1/√2, 1/√2), UV (1/√2, 0, 1/√2): L = (1/2 + 1/2 + 0)/3 = 1/3. */
@@ -172,6 +198,8 @@ int main(void)
     CHECK(gradcheck("L_angle", f_angle, &f, uv2, nv) <= 1);
     CHECK(gradcheck("L_area", f_area, &f, uv2, nv) <= 1);
     CHECK(gradcheck("L_cycle", f_cycle, &f, uv2, nv) <= 1);
+    /* Faces with orientation −1 are folded against it (barrier active), the others not. */
+    CHECK(gradcheck("L_fold", f_fold, &f, uv2, nv) <= 1);
 
     free(uv); free(uv2); free(f.cos3d); free(f.area3d); free(f.orient); free(f.x3);
     free(f.pi); free(f.pj); free(f.g);

@@ -96,3 +96,12 @@ nn_tensor *param_loss_area(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, n
     nn_tensor *auv = nn_mul(ctx, param_face_area_uv(ctx, uv, c), orient);
     return nn_mean(ctx, nn_square(ctx, nn_sub(ctx, auv, area3d)), NN_ALL);
 }
+
+nn_tensor *param_loss_fold_barrier(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, nn_tensor *area3d,
+                                   nn_tensor *orient, float eps)
+{
+    /* The clamp only guards a face of zero 3D area (none after cleaning). */
+    nn_tensor *ratio = nn_div(ctx, nn_mul(ctx, param_face_area_uv(ctx, uv, c), orient), nn_clamp_min(ctx, area3d, 1e-12f));
+    nn_tensor *short_by = nn_relu(ctx, nn_add_const(ctx, nn_scale(ctx, ratio, -1.0f), eps));
+    return nn_mean(ctx, nn_square(ctx, short_by), NN_ALL);
+}

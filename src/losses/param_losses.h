@@ -56,6 +56,18 @@ nn_tensor *param_loss_angle(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, 
 nn_tensor *param_loss_area(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, nn_tensor *area3d,
                            nn_tensor *orient);
 
+/* Fold barrier (a neuv extension, not in the paper): 
+ *   L_fold = 1/|F| Σ_f max(0, ε − orient_f a_f^uv / a_f^3D)²
+ * zero while every face keeps at least ε of its 3D area with the chart's
+ * orientation, growing quadratically as a face shrinks, degenerates or flips.
+ * L_area cannot prevent folds at the paper's weight 0.001 (its gradient on a
+ * small face is O(a_f^3D), ~1e-3 in normalized units); this term is
+ * scale-free, so a folded face costs the same whatever its size.
+ * Inputs: uv #V by 2, c corners, area3d #F by 1 (> 0), orient #F by 1
+ * constants, eps the area ratio below which the barrier acts. Output: 1 by 1. */
+nn_tensor *param_loss_fold_barrier(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, nn_tensor *area3d,
+                                   nn_tensor *orient, float eps);
+
 /* Signed UV area of each face (#F by 1), the quantity L_area compares. */
 nn_tensor *param_face_area_uv(nn_ctx *ctx, nn_tensor *uv, const param_corners *c);
 

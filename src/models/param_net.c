@@ -18,14 +18,19 @@
 void param_net_default_options(param_net_options *o, param_preset preset)
 {
     *o = (param_net_options){0};
-    o->width = 64;
+    o->width = 96;
     o->depth = 4;
     o->leaky_slope = 0.01f;
-    /* fast: two measured deviations from the paper (bench/RESULTS.md): Adam 3e-3
-     * and λ_angle 0.1 (flat 16x16 grid, 1000 iterations: qce_mean 1.102 with the
-     * paper's 1e-3 and 0.001, 1.036 with these; λ_angle 1 folds faces). */
+    /* fast: measured deviations from the paper (bench/RESULTS.md, spot with the
+     * pipeline's 19 charts, 800 iterations): Adam 3e-3 (1e-3 underfits in the
+     * budget), λ_angle 1 (qce_mean 1.153 against 1.209 with 0.1 at width 64;
+     * 3 folds faces even with the barrier), width 96 (1.114; 128: 1.100 at
+     * 1.6x the time), and the fold barrier λ_fold 100, ε 0.05 (without it 6 of
+     * 19 charts fold; with λ_fold 1, 5). */
     o->lr = 3e-3f;
-    o->lambda[0] = 1; o->lambda[1] = 1; o->lambda[2] = 0.1; o->lambda[3] = 0.001;
+    o->lambda[0] = 1; o->lambda[1] = 1; o->lambda[2] = 1; o->lambda[3] = 0.001;
+    o->lambda_fold = 100;
+    o->fold_eps = 0.05;
     o->sigma = 0.2;
     o->radius = 0.6;
     o->iters = 800;
@@ -228,6 +233,28 @@ done:
     return s;
 }
 
+/* Standardizes ψ rows in place: every column to zero mean and unit variance
+ * over the rows, then every row scaled by 1/sqrt(dim) so that a ψ row has an
+ * RMS norm of about 1 whatever its dimension. Why: DiffusionNet features are
+ * O(5) in magnitude (spot: mean |f| 4.7, 64 pooled numbers); fed raw, the ψ
+ * half of the first layer outweighs the normalized position (|x| <= 0.6) by
+ * ~30x at initialization, the output tanh saturates and the map collapses to
+ * one point per chart (measured: every chart of spot degenerate, L_cycle
+ * stuck at 1.1). A column that does not vary (one chart) becomes 0. */
+static void psi_standardize(float *rows, long n, int dim)
+{
+    double inv = 1.0 / sqrt((double)dim);
+    for (int k = 0; k < dim; k++) {
+        double mean = 0, var = 0;
+        for (long i = 0; i < n; i++) mean += rows[i * dim + k];
+        mean /= (double)n;
+        for (long i = 0; i < n; i++) var += (rows[i * dim + k] - mean) * (rows[i * dim + k] - mean);
+        double sd = sqrt(var / (double)n);
+        double mul = sd > 1e-8 ? inv / sd : 0;
+        for (long i = 0; i < n; i++) rows[i * dim + k] = (float)((rows[i * dim + k] - mean) * mul);
+    }
+}
+
 /* ψ rows: pooled per chart, or per chart vertex (see param_net.h). */
 static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, param_psi_mode mode, train_data *d)
 {
@@ -258,6 +285,7 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
     }
     free(vn);
     if (mode == PARAM_PSI_PER_VERTEX) {
+        psi_standardize(rows, d->nv, pd);
         d->feat = rows;
         d->psi_dim = pd;
         return NEUV_OK;
@@ -284,6 +312,7 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
         for (int k = 0; k < pd; k++)
             d->psi[(size_t)c * od + k] = (float)(acc[(size_t)c * pd + k] / (cnt[c] ? cnt[c] : 1));
     free(acc); free(cnt); free(rows);
+    psi_standardize(d->psi, d->n_charts, od);
     d->psi_dim = od;
     return NEUV_OK;
 }
@@ -463,6 +492,19 @@ static neuv_status check_input(const neuv_mesh *m, const int *face_chart, int n_
     return NEUV_OK;
 }
 
+/* Cosine decay from the base rate to base x lr_final over the iteration cap:
+ * the iso pairs and face points are resampled every step, and a constant rate
+ * keeps that noise in the weights to the end. */
+typedef struct lr_cosine { double final_ratio; int iters; } lr_cosine;
+
+static float lr_cosine_at(void *user, long step, float base_lr)
+{
+    const lr_cosine *c = user;
+    double t = c->iters > 1 ? (double)(step - 1) / (c->iters - 1) : 1;
+    if (t > 1) t = 1;
+    return (float)(base_lr * (c->final_ratio + (1 - c->final_ratio) * 0.5 * (1 + cos(3.14159265358979323846 * t))));
+}
+
 neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_charts,
                               const float *vertex_features, int feature_dim,
                               const param_net_options *opts, double *corner_uv, param_net_report *rep)
@@ -506,6 +548,8 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
             rep->parameters += (long)model->params.t[k]->rows * model->params.t[k]->cols;
     nn_adam_config ac = nn_adam_defaults();
     ac.lr = o->lr;
+    lr_cosine sched = {o->lr_final, o->iters};
+    if (o->lr_final > 0) { ac.schedule = lr_cosine_at; ac.schedule_user = &sched; }
     s = nn_adam_init(&adam, &model->params, &ac);
     if (s != NEUV_OK) goto done;
     ctx = nn_ctx_create(0);
@@ -540,6 +584,12 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
                                          nn_view(ctx, d.nf, 1, b.orient));
         nn_tensor *loss = nn_add(ctx, nn_add(ctx, nn_scale(ctx, lc, (float)o->lambda[0]), nn_scale(ctx, li, (float)o->lambda[1])),
                                  nn_add(ctx, nn_scale(ctx, lang, (float)la), nn_scale(ctx, lar, (float)lr_)));
+        nn_tensor *lfold = NULL;
+        if (o->lambda_fold > 0) {
+            lfold = param_loss_fold_barrier(ctx, uv, &d.corners, nn_view(ctx, d.nf, 1, d.area3d),
+                                            nn_view(ctx, d.nf, 1, b.orient), (float)o->fold_eps);
+            loss = nn_add(ctx, loss, nn_scale(ctx, lfold, (float)o->lambda_fold));
+        }
         nn_params_zero_grad(&model->params);
         s = nn_backward(ctx, loss);
         if (s != NEUV_OK) goto done;
@@ -548,6 +598,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         rep->loss = loss->data[0];
         rep->loss_cycle = lc->data[0]; rep->loss_iso = li->data[0];
         rep->loss_angle = lang->data[0]; rep->loss_area = lar->data[0];
+        rep->loss_barrier = lfold ? lfold->data[0] : 0;
         if (it % 10 == 0 || it == o->iters - 1)
             neuv_progress("param", (double)(it + 1) / o->iters, "iter %d loss %.5f", it + 1, rep->loss);
         /* Plateau: the mean loss of a window improved by less than plateau_tol on the

@@ -18,7 +18,9 @@
  * ψ: pooled (default) = [mean, max] over the chart's vertices of the input
  * per-vertex features (#V by D, e.g. DiffusionNet's), 2D numbers; with no
  * features, [centroid, mean unit normal] of the chart (centroid relative to the
- * mesh's bounding box, 6 numbers). It enters the first layer linearly, so a
+ * mesh's bounding box, 6 numbers). Every ψ column is standardized (zero mean,
+ * unit variance over the rows, then rows scaled by 1/sqrt(dim)): raw DiffusionNet
+ * features saturate the output and collapse the map. It enters the first layer linearly, so a
  * learned projection before it would only factor that layer's ψ block and is
  * left out. Per-vertex (the paper's ablation): each point's own features
  * (barycentric inside faces; with no features the point's position relative to
@@ -41,11 +43,15 @@ typedef struct param_net_options {
     int width, depth;       /* hidden width and linear layers of each MLP */
     float leaky_slope;      /* 0.01 */
     float lr;               /* Adam learning rate, 1e-3 */
+    double lr_final;        /* > 0: cosine decay of the rate to lr x lr_final at `iters` (neuv); 0: constant */
     double lambda[4];       /* cycle, iso, angle, area: [1, 1, 0.001, 0.001] */
     /* fast-preset deviation (documented in bench/RESULTS.md): after
      * `warmup_iters`, λ_angle and λ_area become lambda_late[0..1] (0: unchanged). */
     int warmup_iters;
     double lambda_late[2];
+    /* neuv extension (param_losses.h, bench/RESULTS.md): fold barrier weight
+     * and area ratio; 0 weight: off. Zero on a map without folds. */
+    double lambda_fold, fold_eps;
     double sigma;           /* L_iso pair radius in normalized units, 0.2 */
     double radius;          /* normalized geodesic radius of every chart, 0.6 */
     int iters;              /* iteration cap */
@@ -65,6 +71,7 @@ typedef struct param_net_report {
     int stopped_on_plateau;
     long parameters;        /* per MLP (both have nearly the same count; this is MLP_f) */
     double loss, loss_cycle, loss_iso, loss_angle, loss_area; /* last step, unweighted terms */
+    double loss_barrier;    /* last step, unweighted fold barrier (0 when inactive) */
     double setup_seconds, train_seconds, seconds;
     long pairs;             /* geodesic pairs under σ over all charts */
     int flipped;            /* faces whose UV orientation disagrees with their chart's */
