@@ -13,7 +13,14 @@ static const char *usage_text =
     "usage: neuv unwrap IN [-o OUT] [--report R.json] [--preview PREFIX] [--preview-color chart|qce|area]\n"
     "                   [--method neural|lscm|harmonic] [--charts auto|K] [--max-distortion X]\n"
     "                   [--preset fast|paper] [--iters N] [--seed S] [--threads T]\n"
-    "                   [--resolution PX] [--padding PX] [--allow-overlaps] [--no-cache] [--quiet]\n";
+    "                   [--resolution PX] [--padding PX] [--allow-overlaps] [--no-cache] [--quiet]\n"
+    "                   [--save-model M.neuv] [--model M.neuv [--finetune N] [--check-inference]]\n"
+    "                   [--train-faces N]\n";
+
+/* Above this many faces the networks train on a simplified copy and the model
+ * is applied to the full mesh (bench/RESULTS.md, issue 8: training time grows
+ * with the faces while quality does not, and applying a model costs ~1 s per 10k faces). */
+#define DEFAULT_TRAIN_FACES 20000
 
 /* Default output: the input's name without its folder and extension, plus "-uv.obj". */
 static char *default_output(const char *in)
@@ -42,7 +49,8 @@ int cmd_unwrap(int argc, char **argv)
     neuv_unwrap_options_default(&o);
     unwrap_job job = {0};
     const char *in = NULL, *method = NULL, *charts = NULL, *preset = NULL, *color = NULL;
-    int seed = -1, bad = 0;
+    int seed = -1, bad = 0, finetune = 0;
+    job.train_faces = DEFAULT_TRAIN_FACES;
     for (int i = 1; i < argc && !bad; i++) {
         if (cli_arg_global(argc, argv, &i, &bad)) continue;
         if (cli_arg_str(argc, argv, &i, "-o", &job.output, &bad)) continue;
@@ -57,6 +65,11 @@ int cmd_unwrap(int argc, char **argv)
         if (cli_arg_int(argc, argv, &i, "--seed", &seed, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--resolution", &o.resolution, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--padding", &o.padding, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--save-model", &job.save_model, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--model", &job.model, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--finetune", &finetune, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--train-faces", &job.train_faces, &bad)) continue;
+        if (!strcmp(argv[i], "--check-inference")) { job.check_inference = 1; continue; }
         if (!strcmp(argv[i], "--allow-overlaps")) { o.allow_overlaps = 1; continue; }
         if (!strcmp(argv[i], "--no-cache")) { o.use_cache = 0; continue; }
         if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) { fputs(usage_text, stdout); return 0; }
@@ -88,6 +101,17 @@ int cmd_unwrap(int argc, char **argv)
     if (seed >= 0) o.seed = (unsigned long long)seed;
     else if (seed != -1) return cli_error(NULL, "--seed must be non-negative");
     o.threads = cli_opts.threads;
+    if (job.train_faces < 0) return cli_error(NULL, "--train-faces must be 0 (never simplify) or a face count");
+    if (job.train_faces > 0 && job.train_faces < 500)
+        return cli_error(NULL, "--train-faces must be at least 500 (or 0 to train on the full mesh)");
+    if (finetune < 0) return cli_error(NULL, "--finetune must be non-negative");
+    if (finetune > 0)
+        return cli_error(job.model, "--finetune is not available yet: models are applied by inference only "
+                                    "(use --finetune 0 or leave it out)");
+    if (!job.model && job.check_inference) return cli_error(NULL, "--check-inference needs --model");
+    if (job.model && (method || preset || charts || o.iters || seed >= 0))
+        return cli_error(job.model, "--model applies a saved model: --method, --preset, --charts, --iters and --seed "
+                                    "come from the model");
     if (color && parse_preview_color(color, &job.preview_color)) return 2;
 
     char *owned_output = NULL;
@@ -98,6 +122,9 @@ int cmd_unwrap(int argc, char **argv)
     if (rc == 0 && job.report) rc = cli_check_output_not_input(job.report, in);
     if (rc == 0 && job.report) rc = cli_check_output_folder(job.report);
     if (rc == 0 && job.preview) rc = cli_check_output_folder(job.preview);
+    if (rc == 0 && job.save_model) rc = cli_check_output_not_input(job.save_model, in);
+    if (rc == 0 && job.save_model && job.model) rc = cli_check_output_not_input(job.save_model, job.model);
+    if (rc == 0 && job.save_model) rc = cli_check_output_folder(job.save_model);
     if (rc) { free(owned_output); return rc; }
 
     double t = now_seconds();

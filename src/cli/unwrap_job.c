@@ -7,7 +7,9 @@
 #include "cli/cli.h"
 #include "core/atomic_file.h"
 #include "core/timer.h"
+#include "unwrap/unwrap_apply.h"
 #include "unwrap/unwrap_internal.h"
+#include "unwrap/unwrap_model.h"
 
 static int write_text(const char *path, const char *text)
 {
@@ -23,8 +25,30 @@ static int write_text(const char *path, const char *text)
 int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const unwrap_job *job)
 {
     neuv_unwrap_result *r = NULL;
-    neuv_status s = neuv_unwrap(mesh, opts, &r);
-    if (s != NEUV_OK) return cli_fail(job->input_name, s);
+    neuv_status s;
+    if (job->model) {
+        unwrap_model *md = NULL;
+        s = unwrap_model_load(job->model, &md);
+        if (s != NEUV_OK) return cli_fail(job->model, s);
+        unwrap_apply_options ao = {opts->threads, opts->use_cache, job->check_inference};
+        s = unwrap_apply(mesh, md, &ao, &r);
+        if (s == NEUV_OK && job->save_model) s = unwrap_model_save(md, job->save_model);
+        unwrap_model_free(md);
+        if (s != NEUV_OK) {
+            const char *what = r ? job->save_model : job->input_name;
+            neuv_unwrap_result_free(r);
+            return cli_fail(what, s);
+        }
+    } else {
+        unwrap_model *md = NULL;
+        s = unwrap_budgeted(mesh, opts, job->train_faces, job->save_model ? &md : NULL, &r);
+        if (s != NEUV_OK) return cli_fail(job->input_name, s);
+        if (md) {
+            s = unwrap_model_save(md, job->save_model);
+            unwrap_model_free(md);
+            if (s != NEUV_OK) { neuv_unwrap_result_free(r); return cli_fail(job->save_model, s); }
+        }
+    }
 
     double t = now_seconds();
     s = neuv_mesh_save(neuv_unwrap_mesh(r), job->output);
@@ -45,6 +69,9 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
                job->input_name, r->n_charts, mt->qce_mean, mt->flipped, mt->overlap_fraction,
                mt->packing_efficiency, job->load_seconds + r->total_seconds + export_seconds, job->output);
         if (r->n_repairs > 0) printf("  %d repairs (listed in the report)\n", r->n_repairs);
+        if (r->model.trained_on_copy)
+            printf("  trained on a simplified copy (%d of %d faces), model applied to the full mesh\n",
+                   r->model.train_faces, r->mesh->nf);
     }
     free(json);
     neuv_unwrap_result_free(r);

@@ -12,9 +12,14 @@ typedef struct unwrap_job {
     const char *preview;      /* picture prefix or NULL */
     int preview_color;        /* preview_color value */
     double load_seconds;
+    const char *save_model;   /* --save-model path or NULL */
+    const char *model;        /* --model path or NULL: apply instead of training */
+    int train_faces;          /* > 0: train on a simplified copy above this many faces */
+    int check_inference;      /* --check-inference (with --model) */
 } unwrap_job;
 
-/* Runs neuv_unwrap and writes everything; prints a summary unless quiet.
+/* Runs the pipeline (or applies job->model) and writes everything, the
+ * model too with job->save_model; prints a summary unless quiet.
  * Returns the process exit code. */
 int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const unwrap_job *job);
 

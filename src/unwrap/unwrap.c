@@ -52,27 +52,20 @@ void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt,
     neuv_log(NEUV_LOG_DEBUG, "repair: chart %d: %s", chart, rep->what);
 }
 
-/* One chart during the repair stage: its own mesh and per-vertex UVs. */
-typedef struct chart_piece {
-    neuv_mesh *sub;
-    int *vmap, *fmap;
-    double *uv;      /* #CV by 2 */
-    int from_split;  /* made by a split: flattened by the classic method */
-} chart_piece;
-
-static void piece_clear(chart_piece *p)
+void unwrap_piece_clear(chart_piece *p)
 {
     mesh_free(p->sub);
     free(p->vmap);
     free(p->fmap);
     free(p->uv);
     memset(p, 0, sizeof *p);
+    p->net = -1;
 }
 
-static neuv_status piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p)
+neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p)
 {
     int from_split = p->from_split;
-    piece_clear(p);
+    unwrap_piece_clear(p);
     p->from_split = from_split;
     neuv_status s = chart_submesh(m, face_chart, id, &p->sub, &p->vmap, &p->fmap);
     if (s != NEUV_OK) return s;
@@ -116,6 +109,7 @@ static int grow_pieces(chart_piece **pieces, int *cap, int need)
     chart_piece *np = realloc(*pieces, sizeof *np * (size_t)nc);
     if (!np) return -1;
     memset(np + *cap, 0, sizeof *np * (size_t)(nc - *cap));
+    for (int i = *cap; i < nc; i++) np[i].net = -1;
     *pieces = np;
     *cap = nc;
     return 0;
@@ -136,7 +130,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
     for (int c = 0; c < r->n_charts; c++) {
         if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = neuv_fail_nomem("charts"); break; }
         chart_piece *p = &pieces[c];
-        if ((s = piece_build(m, r->face_chart, c, p)) != NEUV_OK) break;
+        if ((s = unwrap_piece_build(m, r->face_chart, c, p)) != NEUV_OK) break;
         neuv_progress("repair", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
         chart_uv_check chk;
         char why[160];
@@ -144,7 +138,12 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
             piece_uv_from_corners(p, corner_uv);
             int ok = chart_uv_check_run(p->sub, p->uv, &chk);
             if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
-            if (ok || r->opts.allow_overlaps) { r->neural_charts++; continue; }
+            if (ok || r->opts.allow_overlaps) {
+                r->neural_charts++;
+                p->net = c;
+                p->mirrored = chk.mirrored;
+                continue;
+            }
             describe_failure(why, sizeof why, &chk);
             unwrap_add_repair(r, c, "neural map folded (%s); re-flattened with LSCM", why);
         }
@@ -152,6 +151,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
         if (s != NEUV_OK) break;
         int ok = chart_uv_check_run(p->sub, p->uv, &chk);
         if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
+        p->mirrored = chk.mirrored;
         if (ok || r->opts.allow_overlaps) continue;
         if (p->sub->nf < 2 || splits >= m->nf) {
             s = neuv_fail(NEUV_ERR_INTERNAL, "chart %d cannot be flattened without folds", c);
@@ -174,9 +174,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
     return s;
 }
 
-/* Per-corner UVs of the whole mesh from the charts' per-vertex UVs: a mesh
- * vertex gets one UV per chart it belongs to (split at seams). */
-static neuv_status assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_charts)
+neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_charts)
 {
     int nuv = 0;
     for (int c = 0; c < n_charts; c++) nuv += pieces[c].sub->nv;
@@ -205,7 +203,17 @@ static neuv_status assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_c
     return s;
 }
 
-static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in)
+neuv_status unwrap_metrics(const neuv_mesh *m, uv_metrics *out)
+{
+    neuv_mesh *welded = mesh_clone(m);
+    if (!welded) return neuv_fail_nomem("the metrics");
+    if (mesh_weld_positions(welded) < 0) { mesh_free(welded); return neuv_fail_nomem("the metrics"); }
+    neuv_status s = uv_metrics_compute(welded, out);
+    mesh_free(welded);
+    return s;
+}
+
+static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model)
 {
     const neuv_unwrap_options *o = &r->opts;
     double t = now_seconds(), t_start = t;
@@ -245,7 +253,16 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     int feature_dim = 0;
     patchnet_report prep;
     memset(&prep, 0, sizeof prep);
-    s = patchnet_segment(m, &ops, &po, r->face_chart, &r->n_charts, &features, &feature_dim, &prep);
+    if (keep_model) {
+        r->patchnet = calloc(1, sizeof *r->patchnet);
+        r->face_label = malloc(sizeof(int) * (size_t)m->nf);
+        if (!r->patchnet || !r->face_label) { operators_free(&ops); return neuv_fail_nomem("the model"); }
+    }
+    s = patchnet_segment_model(m, &ops, &po, r->face_chart, &r->n_charts, &features, &feature_dim, &prep,
+                               r->patchnet);
+    /* The argmax labels of the source are kept so that a later --check-inference
+     * can measure PatchNet inference on another triangulation against them. */
+    if (s == NEUV_OK && keep_model) s = patchnet_infer(r->patchnet, m, &ops, r->face_label);
     operators_free(&ops);
     r->seconds[STAGE_PATCHES] = now_seconds() - t;
     r->patches = prep.k;
@@ -261,12 +278,14 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
         param_net_options pp;
         param_net_default_options(&pp, o->preset == NEUV_PRESET_PAPER ? PARAM_PRESET_PAPER : PARAM_PRESET_FAST);
         pp.seed = o->seed;
+        pp.keep_model = keep_model;
         if (o->iters > 0) pp.iters = o->iters;
         param_net_report pr;
         memset(&pr, 0, sizeof pr);
         s = param_net_flatten(m, r->face_chart, r->n_charts, features, feature_dim, &pp, corner_uv, &pr);
         r->param_iterations = pr.iters;
         r->param_loss = pr.loss;
+        r->param = pr.model;
     }
     free(features);
     r->seconds[STAGE_PARAM] = now_seconds() - t;
@@ -277,8 +296,17 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     int cap = 0;
     s = flatten_and_repair(r, m, corner_uv, &pieces, &cap);
     free(corner_uv);
-    if (s == NEUV_OK) s = assemble_uvs(m, pieces, r->n_charts);
-    for (int c = 0; c < cap; c++) piece_clear(&pieces[c]);
+    if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
+    if (s == NEUV_OK && keep_model) {
+        r->chart_net = malloc(sizeof(int) * (size_t)r->n_charts);
+        r->chart_mirrored = malloc(sizeof(int) * (size_t)r->n_charts);
+        if (!r->chart_net || !r->chart_mirrored) s = neuv_fail_nomem("the model");
+        for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) {
+            r->chart_net[c] = pieces[c].net;
+            r->chart_mirrored[c] = pieces[c].mirrored;
+        }
+    }
+    for (int c = 0; c < cap; c++) unwrap_piece_clear(&pieces[c]);
     free(pieces);
     r->seconds[STAGE_REPAIR] = now_seconds() - t;
     if (s != NEUV_OK) return s;
@@ -297,17 +325,14 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
 
     /* The metrics of the mesh as `neuv eval` will read it back (positions welded). */
     t = now_seconds();
-    neuv_mesh *welded = mesh_clone(m);
-    if (!welded) return neuv_fail_nomem("the metrics");
-    if (mesh_weld_positions(welded) < 0) { mesh_free(welded); return neuv_fail_nomem("the metrics"); }
-    s = uv_metrics_compute(welded, &r->metrics);
-    mesh_free(welded);
+    s = unwrap_metrics(m, &r->metrics);
     r->seconds[STAGE_METRICS] = now_seconds() - t;
     r->total_seconds = now_seconds() - t_start;
     return s;
 }
 
-neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, neuv_unwrap_result **out)
+neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts, int keep_model,
+                         neuv_unwrap_result **out)
 {
     *out = NULL;
     if (!mesh || mesh->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
@@ -320,10 +345,16 @@ neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, 
     if (r->opts.padding < 0 || r->opts.padding > r->opts.resolution / 8)
         { free(r); return neuv_fail(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
     if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
-    neuv_status s = run_pipeline(r, mesh);
+    r->model.label_agreement = -1;
+    neuv_status s = run_pipeline(r, mesh, keep_model);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     *out = r;
     return NEUV_OK;
+}
+
+neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, neuv_unwrap_result **out)
+{
+    return unwrap_train(mesh, opts, 0, out);
 }
 
 const neuv_mesh *neuv_unwrap_mesh(const neuv_unwrap_result *r) { return r ? r->mesh : NULL; }
@@ -336,5 +367,11 @@ void neuv_unwrap_result_free(neuv_unwrap_result *r)
     free(r->face_chart);
     free(r->transforms);
     free(r->repairs);
+    free(r->chart_net);
+    free(r->chart_mirrored);
+    free(r->face_label);
+    if (r->patchnet) patchnet_model_free(r->patchnet);
+    free(r->patchnet);
+    param_net_model_free(r->param);
     free(r);
 }

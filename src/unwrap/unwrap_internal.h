@@ -8,6 +8,8 @@
 #include "mesh/clean.h"
 #include "mesh/mesh.h"
 #include "metrics/uv_metrics.h"
+#include "models/param_net.h"
+#include "models/patchnet.h"
 
 /* One repair, as the report lists it. */
 typedef struct unwrap_repair {
@@ -38,10 +40,58 @@ struct neuv_unwrap_result {
     double total_seconds;
     uv_metrics metrics;
     int cache_hit;
+
+    /* Kept for --save-model (NULL / 0 otherwise). */
+    int *chart_net;           /* n_charts: network chart whose map chart c uses, -1 for a classic map */
+    int *chart_mirrored;      /* n_charts: 1 when the injectivity check mirrored the chart before packing */
+    int *face_label;          /* #F PatchNet argmax on this mesh */
+    patchnet_model *patchnet;
+    param_net_model *param;
+
+    /* Set when the atlas came from a saved model (unwrap_apply.h). */
+    struct {
+        int used;                 /* 1: --model or trained on a simplified copy */
+        int trained_on_copy;      /* 1: --train-faces: trained on a simplified copy of the input */
+        int train_faces;          /* faces of the copy the model was trained on */
+        double train_seconds;     /* the whole training unwrap of the copy */
+        int network_charts;       /* charts mapped by MLP_f */
+        int transferred_charts;   /* charts whose UVs came from the source surface by closest point */
+        int empty_charts;         /* source charts that got no face on this mesh */
+        int merged_fragments;     /* pieces of a transferred chart merged into a neighbour */
+        int shrunk_charts;
+        int repacked;             /* 1: overlaps survived the shrinking and the atlas was packed afresh */
+        double surface_distance;  /* largest face-centroid distance to the source surface / its bbox diagonal */
+        double inference_seconds; /* from the cleaned mesh to the packed atlas (no metrics) */
+        double label_agreement;   /* -1, or PatchNet inference vs stored labels (--check-inference) */
+    } model;
 };
 
 /* Appends a repair note (formatted); silently drops it if memory runs out. */
 void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+
+/* One chart during the repair stage: its own mesh and per-vertex UVs. */
+typedef struct chart_piece {
+    neuv_mesh *sub;
+    int *vmap, *fmap;
+    double *uv;      /* #CV by 2 */
+    int from_split;  /* made by a split: flattened by the classic method */
+    int net;         /* network chart whose map is kept, -1 otherwise */
+    int mirrored;    /* chart_uv_check mirrored it */
+} chart_piece;
+
+void unwrap_piece_clear(chart_piece *p);
+/* Builds chart `id` of m as a piece with zeroed UVs (keeps from_split). */
+neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p);
+/* Per-corner UVs of the whole mesh from the charts' per-vertex UVs: a mesh
+ * vertex gets one UV per chart it belongs to (split at seams). */
+neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_charts);
+/* The metrics of m as `neuv eval` reads the written file (positions welded). */
+neuv_status unwrap_metrics(const neuv_mesh *m, uv_metrics *out);
+
+/* The pipeline; keep_model: also keep the networks and per-chart maps
+ * (chart_net, chart_mirrored, face_label, patchnet, param) for a saved model. */
+neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts, int keep_model,
+                         neuv_unwrap_result **out);
 
 #endif

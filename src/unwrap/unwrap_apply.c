@@ -1,0 +1,751 @@
+/* A saved model applied to another triangulation (unwrap_apply.h). */
+#include "unwrap/unwrap_apply.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "charts/charts.h"
+#include "charts/face_graph.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "core/timer.h"
+#include "core/union_find.h"
+#include "flatten/harmonic.h"
+#include "flatten/lscm.h"
+#include "geometry/operator_cache.h"
+#include "mesh/edge_map.h"
+#include "metrics/uv_overlap.h"
+#include "nn/nn.h"
+#include "remesh/simplify.h"
+#include "spatial/bvh.h"
+#include "unwrap/chart_uv_check.h"
+#include "unwrap/unwrap_internal.h"
+
+/* Resolution of the atlas overlap test: the one of the overlap metric. */
+#define OVERLAP_RESOLUTION 2048
+#define MAX_SHRINK_ROUNDS 12
+
+/* ---- charts by closest point ------------------------------------------ */
+
+/* Each face takes the chart most of four of its points lie on (closest
+ * source face of the centroid and of the points (2/3, 1/6, 1/6) toward each
+ * corner; ties go to the centroid's). One point is not enough on a coarse
+ * mesh: a long triangle cutting a curved region has its centroid nearer
+ * the chart next door.
+ * Outputs: face_chart (#F, model chart ids), src_face (#F, under the centroid), *max_dist. */
+static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, int *face_chart, int *src_face,
+                                   double *max_dist)
+{
+    bvh b;
+    neuv_status s = bvh_build(&b, md->source);
+    if (s) return s;
+    size_t np = 4 * (size_t)m->nf;
+    double *pt = malloc(sizeof(double) * 3 * np);
+    double *d2 = malloc(sizeof(double) * np);
+    int *sf = malloc(sizeof(int) * np);
+    if (!pt || !d2 || !sf) { free(pt); free(d2); free(sf); bvh_free(&b); return neuv_fail_nomem("chart transfer"); }
+    static const double w[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 6, 1.0 / 6},
+                                   {1.0 / 6, 2.0 / 3, 1.0 / 6}, {1.0 / 6, 1.0 / 6, 2.0 / 3}};
+    for (int f = 0; f < m->nf; f++) {
+        const int *t = m->tri + 3 * f;
+        for (int j = 0; j < 4; j++)
+            for (int q = 0; q < 3; q++)
+                pt[3 * (4 * (size_t)f + j) + q] =
+                    w[j][0] * m->pos[3 * t[0] + q] + w[j][1] * m->pos[3 * t[1] + q] + w[j][2] * m->pos[3 * t[2] + q];
+    }
+    bvh_closest_points(&b, (int)np, pt, sf, NULL, d2);
+    double worst = 0;
+    for (int f = 0; f < m->nf; f++) {
+        int lab[4], best = md->face_chart[sf[4 * (size_t)f]], best_n = 0;
+        for (int j = 0; j < 4; j++) lab[j] = md->face_chart[sf[4 * (size_t)f + j]];
+        for (int j = 0; j < 4; j++) {
+            int n = 0;
+            for (int k = 0; k < 4; k++) n += lab[k] == lab[j];
+            if (n > best_n) { best_n = n; best = lab[j]; }
+        }
+        if (best_n <= 2 && lab[0] != best) { /* a 2-2 tie: the centroid's */
+            int n0 = 0;
+            for (int k = 0; k < 4; k++) n0 += lab[k] == lab[0];
+            if (n0 == best_n) best = lab[0];
+        }
+        face_chart[f] = best;
+        src_face[f] = sf[4 * (size_t)f];
+        if (d2[4 * (size_t)f] > worst) worst = d2[4 * (size_t)f];
+    }
+    *max_dist = sqrt(worst);
+    free(pt); free(d2); free(sf);
+    bvh_free(&b);
+    return NEUV_OK;
+}
+
+/* Pieces of a chart cut off from its largest piece (the border zigzag of a
+ * coarser or finer triangulation can isolate a few faces) are merged into
+ * the neighbouring chart they share the longest border with, smallest
+ * first, until every chart is one edge-connected piece (or a piece has no
+ * other chart around it). Returns the number merged, or -1 on no memory. */
+static int merge_fragments(const neuv_mesh *m, const face_graph *g, int *face_chart, int n_labels)
+{
+    int nf = m->nf, merged = 0;
+    union_find u;
+    int *comp = malloc(sizeof(int) * (size_t)nf);
+    double *carea = malloc(sizeof(double) * (size_t)nf);
+    int *best = malloc(sizeof(int) * (size_t)n_labels);
+    double *share = calloc((size_t)n_labels, sizeof(double));
+    int *order = malloc(sizeof(int) * (size_t)nf);
+    if (!comp || !carea || !best || !share || !order || uf_init(&u, nf)) {
+        free(comp); free(carea); free(best); free(share); free(order);
+        return -1;
+    }
+    for (int round = 0; round < 8; round++) {
+        for (int f = 0; f < nf; f++) { u.parent[f] = f; u.size[f] = 1; } /* reset the sets */
+        for (int f = 0; f < nf; f++)
+            for (int k = 0; k < 3; k++) {
+                int h = g->adj[3 * f + k];
+                if (h >= 0 && face_chart[h] == face_chart[f]) uf_union(&u, f, h);
+            }
+        int nc = uf_labels(&u, comp);
+        for (int c = 0; c < nc; c++) carea[c] = 0;
+        for (int f = 0; f < nf; f++) carea[comp[f]] += g->area[f];
+        for (int l = 0; l < n_labels; l++) best[l] = -1;
+        for (int c = 0; c < nc; c++) order[c] = -1;
+        for (int f = 0; f < nf; f++) { /* largest piece of each label */
+            int l = face_chart[f], c = comp[f];
+            if (best[l] < 0 || carea[c] > carea[best[l]] || (carea[c] == carea[best[l]] && c < best[l])) best[l] = c;
+        }
+        /* Fragments, smallest first (by area; ties by id): a selection by repeated scans is enough,
+         * there are few. */
+        int n_frag = 0;
+        for (int f = 0; f < nf; f++) {
+            int c = comp[f];
+            if (c != best[face_chart[f]] && order[c] < 0) order[c] = n_frag++;
+        }
+        if (n_frag == 0) break;
+        int changed = 0;
+        for (int pass = 0; pass < n_frag; pass++) {
+            int pick = -1;
+            for (int c = 0; c < nc; c++)
+                if (order[c] >= 0 && (pick < 0 || carea[c] < carea[pick])) pick = c;
+            order[pick] = -1;
+            /* Longest border to another label (labels as they are now). */
+            int from = -1;
+            for (int f = 0; f < nf && from < 0; f++) if (comp[f] == pick) from = face_chart[f];
+            for (int l = 0; l < n_labels; l++) share[l] = 0;
+            for (int f = 0; f < nf; f++) {
+                if (comp[f] != pick) continue;
+                for (int k = 0; k < 3; k++) {
+                    int h = g->adj[3 * f + k];
+                    if (h >= 0 && face_chart[h] != from) share[face_chart[h]] += g->elen[3 * f + k];
+                }
+            }
+            int to = -1;
+            for (int l = 0; l < n_labels; l++) if (share[l] > 0 && (to < 0 || share[l] > share[to])) to = l;
+            if (to < 0) continue; /* a whole mesh component: nothing to merge into */
+            for (int f = 0; f < nf; f++) if (comp[f] == pick) face_chart[f] = to;
+            merged++;
+            changed = 1;
+        }
+        if (!changed) break;
+    }
+    uf_free(&u);
+    free(comp); free(carea); free(best); free(share); free(order);
+    return merged;
+}
+
+/* ---- per-chart UVs ------------------------------------------------------ */
+
+/* The least-squares similarity (rotation, uniform scale, translation; no
+ * reflection) taking uv to target, applied to uv in place: in complex
+ * numbers w = a (z − z̄) + w̄ with a = Σ conj(z − z̄)(w − w̄) / Σ |z − z̄|². */
+static void align_similarity(double *uv, const double *target, int n)
+{
+    double zc[2] = {0, 0}, wc[2] = {0, 0};
+    for (int i = 0; i < n; i++)
+        for (int q = 0; q < 2; q++) { zc[q] += uv[2 * i + q] / n; wc[q] += target[2 * i + q] / n; }
+    double re = 0, im = 0, den = 0;
+    for (int i = 0; i < n; i++) {
+        double zx = uv[2 * i] - zc[0], zy = uv[2 * i + 1] - zc[1];
+        double wx = target[2 * i] - wc[0], wy = target[2 * i + 1] - wc[1];
+        re += zx * wx + zy * wy;
+        im += zx * wy - zy * wx;
+        den += zx * zx + zy * zy;
+    }
+    if (!(den > 0)) return;
+    re /= den;
+    im /= den;
+    for (int i = 0; i < n; i++) {
+        double zx = uv[2 * i] - zc[0], zy = uv[2 * i + 1] - zc[1];
+        uv[2 * i] = re * zx - im * zy + wc[0];
+        uv[2 * i + 1] = im * zx + re * zy + wc[1];
+    }
+}
+
+/* Barycentric coordinates of p's projection onto the plane of triangle abc,
+ * unclamped: outside the triangle some are negative, so the triangle's
+ * affine UV map extends linearly past it. */
+static void plane_barycentric(const double *a, const double *b, const double *c, const double *p, double w[3])
+{
+    double e0[3], e1[3], e2[3];
+    for (int q = 0; q < 3; q++) { e0[q] = b[q] - a[q]; e1[q] = c[q] - a[q]; e2[q] = p[q] - a[q]; }
+    double d00 = 0, d01 = 0, d11 = 0, d20 = 0, d21 = 0;
+    for (int q = 0; q < 3; q++) {
+        d00 += e0[q] * e0[q]; d01 += e0[q] * e1[q]; d11 += e1[q] * e1[q];
+        d20 += e2[q] * e0[q]; d21 += e2[q] * e1[q];
+    }
+    double den = d00 * d11 - d01 * d01;
+    if (!(fabs(den) > 0)) { w[0] = 1; w[1] = w[2] = 0; return; }
+    w[1] = (d11 * d20 - d01 * d21) / den;
+    w[2] = (d00 * d21 - d01 * d20) / den;
+    w[0] = 1 - w[1] - w[2];
+}
+
+/* Source UVs of chart mc at the piece's vertices: the closest face of that
+ * chart and its UV map, extended linearly. Clamping to the chart instead
+ * (plain barycentric of the closest point) would pile every vertex outside
+ * the source chart's border onto that border and fold the faces there: a
+ * new triangulation's chart border zigzags across the source's. */
+static neuv_status transfer_chart_uvs(const unwrap_model *md, int mc, chart_piece *p)
+{
+    neuv_mesh *ssub = NULL;
+    int *svmap = NULL, *sfmap = NULL;
+    neuv_status s = chart_submesh(md->source, md->face_chart, mc, &ssub, &svmap, &sfmap);
+    if (s) return s;
+    bvh b;
+    memset(&b, 0, sizeof b);
+    s = bvh_build(&b, ssub);
+    int *face = malloc(sizeof(int) * (size_t)p->sub->nv);
+    if (s == NEUV_OK && !face) s = neuv_fail_nomem("UV transfer");
+    if (s == NEUV_OK) {
+        bvh_closest_points(&b, p->sub->nv, p->sub->pos, face, NULL, NULL);
+        for (int v = 0; v < p->sub->nv; v++) {
+            const int *t = ssub->tri + 3 * face[v];
+            double w[3];
+            plane_barycentric(ssub->pos + 3 * t[0], ssub->pos + 3 * t[1], ssub->pos + 3 * t[2], p->sub->pos + 3 * v, w);
+            int f = sfmap[face[v]];
+            p->uv[2 * v] = p->uv[2 * v + 1] = 0;
+            for (int k = 0; k < 3; k++) {
+                const double *u = md->source->uv + 2 * md->source->tri_uv[3 * f + k];
+                p->uv[2 * v] += w[k] * u[0];
+                p->uv[2 * v + 1] += w[k] * u[1];
+            }
+        }
+    }
+    bvh_free(&b);
+    free(face);
+    mesh_free(ssub); free(svmap); free(sfmap);
+    return s;
+}
+
+/* 1: the UVs pass the injectivity check as they are (no mirroring needed). */
+static int uv_usable(const chart_piece *p, const double *uv, double *scratch, chart_uv_check *chk)
+{
+    memcpy(scratch, uv, sizeof(double) * 2 * (size_t)p->sub->nv);
+    int ok = chart_uv_check_run(p->sub, scratch, chk);
+    if (ok < 0) return -1;
+    return ok && !chk->mirrored;
+}
+
+static void transform_uvs(double *uv, int n, const atlas_chart_transform *xf)
+{
+    for (int i = 0; i < n; i++) {
+        double o[2];
+        atlas_chart_transform_apply(xf, uv + 2 * i, o);
+        uv[2 * i] = o[0];
+        uv[2 * i + 1] = o[1];
+    }
+}
+
+static double tri_uv_area2(const double *uv, const int *t)
+{
+    const double *a = uv + 2 * t[0], *b = uv + 2 * t[1], *c = uv + 2 * t[2];
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/* Local repair of a few folded faces: the inner vertices of non-positive
+ * faces move to the mean of their chart neighbours (one Tutte step), a few
+ * rounds, so the rest of the chart keeps the model's UVs exactly. Returns 1
+ * when the chart then passes the check, 0 when not (uv is then unchanged), -1 on no memory. */
+static int relax_folds(chart_piece *p, double *scratch)
+{
+    const neuv_mesh *c = p->sub;
+    int nv = c->nv, nf = c->nf;
+    double *uv0 = malloc(sizeof(double) * 2 * (size_t)nv);
+    int *deg = calloc((size_t)nv + 1, sizeof(int)), *bnd = calloc((size_t)nv, sizeof(int));
+    unsigned char *hot = malloc((size_t)nv);
+    if (!uv0 || !deg || !bnd || !hot) { free(uv0); free(deg); free(bnd); free(hot); return -1; }
+    memcpy(uv0, p->uv, sizeof(double) * 2 * (size_t)nv);
+    /* Boundary vertices (a directed edge whose twin is missing) stay. */
+    edge_map e;
+    if (edge_map_init(&e, (size_t)nf * 3)) { free(uv0); free(deg); free(bnd); free(hot); return -1; }
+    int bad = 0;
+    for (int f = 0; f < nf && !bad; f++)
+        for (int k = 0; k < 3; k++)
+            if (!edge_map_slot(&e, c->tri[3 * f + k], c->tri[3 * f + (k + 1) % 3], f, NULL)) bad = 1;
+    for (int f = 0; f < nf && !bad; f++)
+        for (int k = 0; k < 3; k++) {
+            int a = c->tri[3 * f + k], b = c->tri[3 * f + (k + 1) % 3];
+            if (edge_map_get(&e, b, a) < 0) bnd[a] = bnd[b] = 1;
+        }
+    edge_map_free(&e);
+    if (bad) { free(uv0); free(deg); free(bnd); free(hot); return -1; }
+    chart_uv_check chk;
+    int ok = 0;
+    for (int round = 0; round < 30 && !ok; round++) {
+        memset(hot, 0, (size_t)nv);
+        int any = 0;
+        for (int f = 0; f < nf; f++)
+            if (tri_uv_area2(p->uv, c->tri + 3 * f) <= 0)
+                for (int k = 0; k < 3; k++) { hot[c->tri[3 * f + k]] = 1; any = 1; }
+        if (!any) { ok = uv_usable(p, p->uv, scratch, &chk); break; }
+        /* Grow by one ring so the neighbours can make room. */
+        if (round > 10)
+            for (int f = 0; f < nf; f++)
+                if (hot[c->tri[3 * f]] == 1 || hot[c->tri[3 * f + 1]] == 1 || hot[c->tri[3 * f + 2]] == 1)
+                    for (int k = 0; k < 3; k++) if (!hot[c->tri[3 * f + k]]) hot[c->tri[3 * f + k]] = 2;
+        memset(scratch, 0, sizeof(double) * 2 * (size_t)nv);
+        memset(deg, 0, sizeof(int) * (size_t)nv);
+        for (int f = 0; f < nf; f++)
+            for (int k = 0; k < 3; k++) {
+                int a = c->tri[3 * f + k];
+                if (!hot[a] || bnd[a]) continue;
+                for (int j = 1; j < 3; j++) {
+                    int b = c->tri[3 * f + (k + j) % 3];
+                    scratch[2 * a] += p->uv[2 * b];
+                    scratch[2 * a + 1] += p->uv[2 * b + 1];
+                    deg[a]++;
+                }
+            }
+        for (int v = 0; v < nv; v++)
+            if (hot[v] && !bnd[v] && deg[v]) {
+                p->uv[2 * v] = scratch[2 * v] / deg[v];
+                p->uv[2 * v + 1] = scratch[2 * v + 1] / deg[v];
+            }
+    }
+    if (ok <= 0) memcpy(p->uv, uv0, sizeof(double) * 2 * (size_t)nv);
+    free(uv0); free(deg); free(bnd); free(hot);
+    return ok;
+}
+
+/* Flattens a piece classically (LSCM, harmonic if LSCM folds) and aligns it to
+ * target. Returns 1 when the result is usable, 0 when not, -1 on no memory;
+ * a flattening error (not a disk) counts as unusable. */
+static int reflatten(chart_piece *p, const double *target, double *scratch, const char **how)
+{
+    chart_uv_check chk;
+    for (int attempt = 0; attempt < 2; attempt++) {
+        neuv_status s = attempt == 0 ? lscm(p->sub, p->uv) : harmonic(p->sub, p->uv);
+        *how = attempt == 0 ? "LSCM" : "harmonic";
+        if (s == NEUV_ERR_NOMEM) return -1;
+        if (s != NEUV_OK) continue;
+        int ok = chart_uv_check_run(p->sub, p->uv, &chk); /* orients it counter-clockwise */
+        if (ok < 0) return -1;
+        if (!ok) continue;
+        align_similarity(p->uv, target, p->sub->nv);
+        ok = uv_usable(p, p->uv, scratch, &chk);
+        if (ok) return ok;
+    }
+    return 0;
+}
+
+/* ---- the atlas ---------------------------------------------------------- */
+
+typedef struct chart_span {
+    int first, count;   /* range of the chart's UVs in m->uv */
+    int repaired;
+    double lo[2], hi[2];
+} chart_span;
+
+static void span_bounds(const neuv_mesh *m, chart_span *sp)
+{
+    sp->lo[0] = sp->lo[1] = INFINITY;
+    sp->hi[0] = sp->hi[1] = -INFINITY;
+    for (int i = sp->first; i < sp->first + sp->count; i++)
+        for (int q = 0; q < 2; q++) {
+            sp->lo[q] = fmin(sp->lo[q], m->uv[2 * i + q]);
+            sp->hi[q] = fmax(sp->hi[q], m->uv[2 * i + q]);
+        }
+}
+
+/* Overlapped pixel centres of two charts drawn together. */
+static neuv_status pair_overlap(const neuv_mesh *m, const int *face_chart, int a, int b, unsigned char *mask,
+                                long long *out)
+{
+    for (int f = 0; f < m->nf; f++) mask[f] = face_chart[f] == a || face_chart[f] == b;
+    uv_coverage cov;
+    neuv_status s = uv_coverage_count(m->uv, m->nf, m->tri_uv, mask, OVERLAP_RESOLUTION, &cov);
+    *out = cov.overlapped;
+    return s;
+}
+
+/* Shrinks charts that overlap a neighbour until the whole atlas has no
+ * overlapped pixel centre (at the metric's resolution). */
+static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *span)
+{
+    neuv_mesh *m = r->mesh;
+    unsigned char *mask = malloc((size_t)m->nf);
+    int *shrunk = calloc((size_t)r->n_charts, sizeof(int));
+    if (!mask || !shrunk) { free(mask); free(shrunk); return neuv_fail_nomem("overlap test"); }
+    neuv_status s = NEUV_OK;
+    for (int round = 0; round < MAX_SHRINK_ROUNDS; round++) {
+        uv_coverage cov;
+        if ((s = uv_coverage_count(m->uv, m->nf, m->tri_uv, NULL, OVERLAP_RESOLUTION, &cov))) break;
+        if (cov.overlapped == 0) break;
+        int acted = 0;
+        for (int c = 0; c < r->n_charts; c++) span_bounds(m, &span[c]);
+        for (int a = 0; a < r->n_charts && s == NEUV_OK; a++)
+            for (int b = a + 1; b < r->n_charts; b++) {
+                chart_span *A = &span[a], *B = &span[b];
+                if (A->hi[0] < B->lo[0] || B->hi[0] < A->lo[0] || A->hi[1] < B->lo[1] || B->hi[1] < A->lo[1])
+                    continue;
+                long long ov;
+                if ((s = pair_overlap(m, r->face_chart, a, b, mask, &ov))) break;
+                if (ov == 0) continue;
+                /* The repaired chart moves; else the smaller one. */
+                int pick = A->repaired != B->repaired ? (A->repaired ? a : b)
+                         : ((A->hi[0] - A->lo[0]) * (A->hi[1] - A->lo[1]) <=
+                            (B->hi[0] - B->lo[0]) * (B->hi[1] - B->lo[1]) ? a : b);
+                chart_span *P = &span[pick];
+                double cx = 0, cy = 0;
+                for (int i = P->first; i < P->first + P->count; i++) { cx += m->uv[2 * i]; cy += m->uv[2 * i + 1]; }
+                cx /= P->count;
+                cy /= P->count;
+                for (int i = P->first; i < P->first + P->count; i++) {
+                    m->uv[2 * i] = cx + 0.92 * (m->uv[2 * i] - cx);
+                    m->uv[2 * i + 1] = cy + 0.92 * (m->uv[2 * i + 1] - cy);
+                }
+                span_bounds(m, P);
+                if (!shrunk[pick]) r->model.shrunk_charts++;
+                shrunk[pick]++;
+                acted = 1;
+            }
+        if (!acted) break; /* overlaps the pair test cannot see: leave them to the metrics */
+    }
+    for (int c = 0; c < r->n_charts && s == NEUV_OK; c++)
+        if (shrunk[c])
+            unwrap_add_repair(r, c, "overlapped a neighbour in the atlas; shrunk to %.3f of its size about its centroid",
+                              pow(0.92, shrunk[c]));
+    free(mask);
+    free(shrunk);
+    return s;
+}
+
+/* Moves the atlas into [0,1]^2 by one uniform scale and translation when a
+ * chart crossed the border (network UVs near a chart's border may reach a
+ * little past the source's). */
+static void fit_unit_square(struct neuv_unwrap_result *r)
+{
+    neuv_mesh *m = r->mesh;
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int i = 0; i < m->nuv; i++)
+        for (int q = 0; q < 2; q++) { lo[q] = fmin(lo[q], m->uv[2 * i + q]); hi[q] = fmax(hi[q], m->uv[2 * i + q]); }
+    if (lo[0] >= 0 && lo[1] >= 0 && hi[0] <= 1 && hi[1] <= 1) return;
+    double margin = (double)r->opts.padding / r->opts.resolution;
+    double side = fmax(hi[0] - lo[0], hi[1] - lo[1]);
+    double sc = fmin(1.0, (1 - 2 * margin) / side);
+    double ox = 0.5 - sc * 0.5 * (lo[0] + hi[0]), oy = 0.5 - sc * 0.5 * (lo[1] + hi[1]);
+    for (int i = 0; i < m->nuv; i++) {
+        m->uv[2 * i] = fmin(1, fmax(0, sc * m->uv[2 * i] + ox));
+        m->uv[2 * i + 1] = fmin(1, fmax(0, sc * m->uv[2 * i + 1] + oy));
+    }
+    unwrap_add_repair(r, -1, "atlas reached past [0,1]^2 (box %.4f..%.4f, %.4f..%.4f); scaled by %.4f and centred",
+                      lo[0], hi[0], lo[1], hi[1], sc);
+}
+
+/* PatchNet on this mesh against the source's labels at the closest source face (by area). */
+static neuv_status check_inference(struct neuv_unwrap_result *r, const unwrap_model *md, const int *src_face,
+                                   int use_cache)
+{
+    if (!md->patchnet || !md->face_label) return NEUV_OK;
+    operators ops;
+    memset(&ops, 0, sizeof ops);
+    operators_params op = operators_default_params();
+    int hit = 0;
+    neuv_status s = operators_get(r->mesh, &op, use_cache, &ops, NULL, &hit);
+    if (s) return s;
+    int *label = malloc(sizeof(int) * (size_t)r->mesh->nf);
+    if (!label) { operators_free(&ops); return neuv_fail_nomem("labels"); }
+    s = patchnet_infer(md->patchnet, r->mesh, &ops, label);
+    operators_free(&ops);
+    if (s == NEUV_OK) {
+        double agree = 0, total = 0;
+        for (int f = 0; f < r->mesh->nf; f++) {
+            double a = mesh_face_area(r->mesh, f);
+            total += a;
+            if (label[f] == md->face_label[src_face[f]]) agree += a;
+        }
+        r->model.label_agreement = total > 0 ? agree / total : 0;
+    }
+    free(label);
+    return s;
+}
+
+static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in, const unwrap_model *md,
+                                  const unwrap_apply_options *o)
+{
+    double t = now_seconds(), t_start = t;
+    neuv_status s;
+    neuv_mesh *m = mesh_clone(in);
+    if (!m) return neuv_fail_nomem("the mesh");
+    r->mesh = m;
+    r->input_vertices = in->nv;
+    r->input_faces = in->nf;
+    mesh_set_uv(m, 0, NULL, NULL);
+    if ((s = mesh_clean(m, NULL, &r->clean)) != NEUV_OK) return s;
+    if (m->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
+    r->seconds[STAGE_CLEAN] = now_seconds() - t;
+    double t_infer = now_seconds();
+
+    /* Charts. */
+    t = now_seconds();
+    neuv_progress("patches", 0, "charts from the model's source surface");
+    int *label = malloc(sizeof(int) * (size_t)m->nf);
+    int *src_face = malloc(sizeof(int) * (size_t)m->nf);
+    r->face_chart = malloc(sizeof(int) * (size_t)m->nf);
+    if (!label || !src_face || !r->face_chart) { free(label); free(src_face); return neuv_fail_nomem("charts"); }
+    double dist = 0;
+    s = transfer_charts(m, md, label, src_face, &dist);
+    r->model.surface_distance = md->norm[3] > 0 ? dist / md->norm[3] : 0;
+    face_graph g;
+    if (s == NEUV_OK) s = face_graph_build(m, &g);
+    if (s == NEUV_OK) {
+        int merged = merge_fragments(m, &g, label, md->n_charts);
+        face_graph_free(&g);
+        if (merged < 0) s = neuv_fail_nomem("charts");
+        r->model.merged_fragments = merged;
+    }
+    /* Compact ids: source charts that got no face are dropped. */
+    int *model_chart = malloc(sizeof(int) * (size_t)md->n_charts);
+    int *new_id = malloc(sizeof(int) * (size_t)md->n_charts);
+    if (s == NEUV_OK && (!model_chart || !new_id)) s = neuv_fail_nomem("charts");
+    if (s == NEUV_OK) {
+        for (int c = 0; c < md->n_charts; c++) new_id[c] = -1;
+        for (int f = 0; f < m->nf; f++) new_id[label[f]] = 0;
+        r->n_charts = 0;
+        for (int c = 0; c < md->n_charts; c++)
+            if (new_id[c] == 0) { model_chart[r->n_charts] = c; new_id[c] = r->n_charts++; }
+        r->model.empty_charts = md->n_charts - r->n_charts;
+        for (int f = 0; f < m->nf; f++) r->face_chart[f] = new_id[label[f]];
+    }
+    free(label);
+    free(new_id);
+    r->seconds[STAGE_PATCHES] = now_seconds() - t;
+    double t_check = now_seconds();
+    if (s == NEUV_OK && o->check_inference) s = check_inference(r, md, src_face, o->use_cache);
+    free(src_face);
+    if (s) { free(model_chart); return s; }
+    t_infer += now_seconds() - t_check; /* the inference time leaves the diagnostic out */
+
+    /* UVs of every chart, checked; folded ones re-flattened. */
+    t = now_seconds();
+    int cap = r->n_charts + 16;
+    chart_piece *pieces = calloc((size_t)cap, sizeof *pieces);
+    int *repaired = calloc((size_t)cap, sizeof(int));
+    int *mc_grown = realloc(model_chart, sizeof(int) * (size_t)cap);
+    if (mc_grown) model_chart = mc_grown;
+    if (!pieces || !repaired || !mc_grown) { free(pieces); free(repaired); free(model_chart); return neuv_fail_nomem("charts"); }
+    int splits = 0;
+    for (int c = 0; c < r->n_charts && s == NEUV_OK; c++) {
+        if (r->n_charts >= cap) { /* charts added by splits */
+            int nc = 2 * r->n_charts;
+            chart_piece *np = realloc(pieces, sizeof *np * (size_t)nc);
+            if (np) { memset(np + cap, 0, sizeof *np * (size_t)(nc - cap)); pieces = np; }
+            int *nr = realloc(repaired, sizeof(int) * (size_t)nc);
+            if (nr) { memset(nr + cap, 0, sizeof(int) * (size_t)(nc - cap)); repaired = nr; }
+            int *nm = realloc(model_chart, sizeof(int) * (size_t)nc);
+            if (nm) model_chart = nm;
+            if (!np || !nr || !nm) { s = neuv_fail_nomem("charts"); break; }
+            cap = nc;
+        }
+        chart_piece *p = &pieces[c];
+        if ((s = unwrap_piece_build(m, r->face_chart, c, p))) break;
+        neuv_progress("param", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
+        int mc = model_chart[c], net = md->chart_net[mc], n = p->sub->nv;
+        double *target = malloc(sizeof(double) * 2 * (size_t)n), *scratch = malloc(sizeof(double) * 2 * (size_t)n);
+        if (!target || !scratch) { free(target); free(scratch); s = neuv_fail_nomem("chart UVs"); break; }
+        if (net >= 0) {
+            s = param_net_apply(md->param, net, p->sub->pos, n, p->uv);
+            if (md->chart_mirrored[mc]) /* as the source's check did before packing */
+                for (int v = 0; v < n; v++) p->uv[2 * v] = -p->uv[2 * v];
+        } else {
+            s = transfer_chart_uvs(md, mc, p);
+        }
+        if (s) { free(target); free(scratch); break; }
+        memcpy(target, p->uv, sizeof(double) * 2 * (size_t)n);
+        chart_uv_check chk;
+        int ok = uv_usable(p, p->uv, scratch, &chk);
+        if (ok == 0) {
+            char why[160];
+            snprintf(why, sizeof why, "%d flipped, %d degenerate faces, %d boundary crossings%s", chk.flipped,
+                     chk.degenerate, chk.boundary_crossings, chk.mirrored ? ", reversed orientation" : "");
+            const char *how = "LSCM";
+            ok = relax_folds(p, scratch);
+            if (ok > 0) {
+                unwrap_add_repair(r, c, "%s map folded on this mesh (%s); folded faces relaxed locally",
+                                  net >= 0 ? "network" : "transferred", why);
+            } else if (ok == 0 && (ok = reflatten(p, target, scratch, &how)) > 0) {
+                repaired[c] = 1;
+                unwrap_add_repair(r, c, "%s map folded on this mesh (%s); re-flattened with %s and aligned to it",
+                                  net >= 0 ? "network" : "transferred", why, how);
+            } else if (ok == 0) {
+                if (p->sub->nf < 2 || splits >= m->nf) {
+                    s = neuv_fail(NEUV_ERR_INTERNAL, "chart %d cannot be flattened without folds", c);
+                } else {
+                    int before = r->n_charts;
+                    s = charts_split(m, r->face_chart, &r->n_charts, c);
+                    if (s == NEUV_OK && r->n_charts > cap) {
+                        int *nm = realloc(model_chart, sizeof(int) * (size_t)r->n_charts);
+                        if (nm) model_chart = nm;
+                        else s = neuv_fail_nomem("charts");
+                    }
+                    for (int k = before; s == NEUV_OK && k < r->n_charts; k++) model_chart[k] = mc;
+                    splits++;
+                    unwrap_add_repair(r, c, "folded on this mesh (%s) and could not be re-flattened; split into %d charts",
+                                      why, r->n_charts - before + 1);
+                    c--;
+                }
+                free(target); free(scratch);
+                continue;
+            }
+        }
+        if (ok < 0) s = neuv_fail_nomem("chart check");
+        else if (net >= 0) transform_uvs(p->uv, n, &md->xf[mc]);
+        if (net >= 0 && !repaired[c]) r->model.network_charts++;
+        if (net < 0) r->model.transferred_charts++;
+        free(target); free(scratch);
+    }
+    if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
+    chart_span *span = s == NEUV_OK ? calloc((size_t)r->n_charts, sizeof *span) : NULL;
+    if (s == NEUV_OK && !span) s = neuv_fail_nomem("charts");
+    for (int c = 0, base = 0; s == NEUV_OK && c < r->n_charts; c++) {
+        span[c].first = base;
+        span[c].count = pieces[c].sub->nv;
+        span[c].repaired = repaired[c];
+        base += pieces[c].sub->nv;
+    }
+    for (int c = 0; c < cap; c++) unwrap_piece_clear(&pieces[c]);
+    free(pieces);
+    free(repaired);
+    r->neural_charts = r->model.network_charts;
+    r->seconds[STAGE_PARAM] = now_seconds() - t;
+
+    /* The whole atlas: no chart on another, inside the unit square. */
+    t = now_seconds();
+    r->transforms = calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *r->transforms);
+    if (s == NEUV_OK && !r->transforms) s = neuv_fail_nomem("chart transforms");
+    for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->transforms[c] = md->xf[model_chart[c]];
+    free(model_chart);
+    if (s == NEUV_OK) s = resolve_overlaps(r, span);
+    free(span);
+    if (s == NEUV_OK) fit_unit_square(r);
+    if (s == NEUV_OK) { /* last resort for the no-overlap guarantee: a fresh packing */
+        uv_coverage cov;
+        s = uv_coverage_count(m->uv, m->nf, m->tri_uv, NULL, OVERLAP_RESOLUTION, &cov);
+        if (s == NEUV_OK && cov.overlapped > 0) {
+            atlas_pack_options pk;
+            atlas_pack_options_default(&pk);
+            pk.resolution = r->opts.resolution;
+            pk.padding = r->opts.padding;
+            pk.keep_scale = 1;
+            s = atlas_pack(m, r->face_chart, r->n_charts, &pk, r->transforms, &r->pack);
+            r->model.repacked = 1;
+            unwrap_add_repair(r, -1, "charts still overlapped after shrinking; atlas repacked (layout differs from the model's)");
+        }
+    }
+    r->seconds[STAGE_REPAIR] = now_seconds() - t;
+    r->model.inference_seconds = now_seconds() - t_infer;
+    if (s) return s;
+
+    t = now_seconds();
+    s = unwrap_metrics(m, &r->metrics);
+    r->seconds[STAGE_METRICS] = now_seconds() - t;
+    r->total_seconds = now_seconds() - t_start;
+    return s;
+}
+
+static void opts_from_model(neuv_unwrap_options *opts, const unwrap_model *md)
+{
+    neuv_unwrap_options_default(opts);
+    opts->method = md->method;
+    opts->preset = md->preset;
+    opts->seed = md->seed;
+    opts->resolution = md->resolution;
+    opts->padding = md->padding;
+}
+
+neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *md, const unwrap_apply_options *o,
+                         neuv_unwrap_result **out)
+{
+    *out = NULL;
+    if (!mesh || mesh->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
+    unwrap_apply_options def = {0, 1, 0};
+    if (!o) o = &def;
+    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
+    if (!r) return neuv_fail_nomem("the result");
+    opts_from_model(&r->opts, md);
+    r->opts.threads = o->threads;
+    r->opts.use_cache = o->use_cache;
+    r->model.used = 1;
+    r->model.label_agreement = -1;
+    if (o->threads > 0) nn_set_threads(o->threads);
+    neuv_status s = apply_pipeline(r, mesh, md, o);
+    if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
+    *out = r;
+    return NEUV_OK;
+}
+
+neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *opts, int train_faces,
+                            unwrap_model **model_out, neuv_unwrap_result **out)
+{
+    *out = NULL;
+    if (model_out) *model_out = NULL;
+    if (!mesh || train_faces <= 0 || mesh->nf <= train_faces) {
+        neuv_status s = unwrap_train(mesh, opts, model_out != NULL, out);
+        if (s || !model_out) return s;
+        s = unwrap_model_from_result(*out, model_out);
+        if (s) { neuv_unwrap_result_free(*out); *out = NULL; }
+        return s;
+    }
+    double t = now_seconds();
+    neuv_progress("simplify", 0, "%d faces to about %d", mesh->nf, train_faces);
+    neuv_mesh *copy = mesh_clone(mesh);
+    if (!copy) return neuv_fail_nomem("the mesh");
+    mesh_set_uv(copy, 0, NULL, NULL);
+    neuv_mesh *small = NULL;
+    neuv_status s = mesh_simplify(copy, (double)train_faces / mesh->nf, &small);
+    mesh_free(copy);
+    if (s) return s;
+    neuv_log(NEUV_LOG_INFO, "training on a simplified copy: %d of %d faces", small->nf, mesh->nf);
+    neuv_unwrap_result *tr = NULL;
+    s = unwrap_train(small, opts, 1, &tr);
+    int small_faces = small->nf;
+    mesh_free(small);
+    if (s) return s;
+    unwrap_model *md = NULL;
+    s = unwrap_model_from_result(tr, &md);
+    double train_seconds = now_seconds() - t;
+    if (s == NEUV_OK) {
+        unwrap_apply_options ao = {opts ? opts->threads : 0, opts ? opts->use_cache : 1, 0};
+        s = unwrap_apply(mesh, md, &ao, out);
+    }
+    if (s == NEUV_OK) {
+        struct neuv_unwrap_result *r = *out;
+        r->opts = tr->opts;
+        r->model.trained_on_copy = 1;
+        r->model.train_faces = small_faces;
+        r->model.train_seconds = train_seconds;
+        r->patches = tr->patches;
+        r->patch_iterations = tr->patch_iterations;
+        r->patch_iters_per_second = tr->patch_iters_per_second;
+        r->param_iterations = tr->param_iterations;
+        r->param_loss = tr->param_loss;
+        r->total_seconds += train_seconds;
+        for (int i = 0; i < tr->n_repairs; i++)
+            unwrap_add_repair(r, -1, "while training on the copy: chart %d: %.120s", tr->repairs[i].chart,
+                              tr->repairs[i].what);
+    }
+    neuv_unwrap_result_free(tr);
+    if (s == NEUV_OK && model_out) *model_out = md;
+    else unwrap_model_free(md);
+    return s;
+}

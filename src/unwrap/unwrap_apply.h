@@ -1,0 +1,55 @@
+/* Applying a saved unwrap model to another triangulation of the same
+ * surface (`neuv unwrap --model M.neuv IN`), and training on a simplified
+ * copy of a large mesh (`--train-faces`).
+ *
+ * Charts on the new mesh come from the stored source charts by closest
+ * point (each face takes the chart of the source face nearest its
+ * centroid; pieces cut off from their chart are merged into the neighbour
+ * sharing the longest border), not from PatchNet inference: closest-point
+ * transfer reproduces the source charts up to the border zigzag whatever
+ * the triangulation, while argmax labels of a re-run network then need the
+ * label-to-chart cutting and splitting to come out the same (measured in
+ * bench/RESULTS.md; --check-inference reports PatchNet's agreement).
+ *
+ * UVs: a chart the source mapped with MLP_f is evaluated by MLP_f at the new
+ * vertices (param_net_apply); a chart with a classic map (lscm/harmonic
+ * models, and neural charts the source repaired) takes the source's UVs by
+ * closest point on that chart (barycentric). The stored packing similarity
+ * of each chart places it in the atlas, so the layout is the source's.
+ *
+ * Guarantee: every chart passes chart_uv_check (positive areas, simple
+ * boundary: injective); a folded chart is re-flattened by LSCM (harmonic if
+ * LSCM folds too, split if both do), aligned to the network's UVs by the
+ * least-squares similarity so it lands where the layout expects it. Then the
+ * whole atlas is rasterized (uv_overlap.h); charts that overlap a neighbour
+ * are shrunk about their centroid until none do, and the atlas is fitted
+ * into [0,1]^2 if a chart crossed its border. Every repair is reported. */
+#ifndef NEUV_UNWRAP_UNWRAP_APPLY_H
+#define NEUV_UNWRAP_UNWRAP_APPLY_H
+
+#include "neuv/neuv.h"
+#include "unwrap/unwrap_model.h"
+
+typedef struct unwrap_apply_options {
+    int threads;          /* > 0: thread count */
+    int use_cache;        /* operators cache (only --check-inference computes operators) */
+    int check_inference;  /* 1: also run PatchNet on the mesh and report its label agreement */
+} unwrap_apply_options;
+
+/* Inputs:  mesh  any triangulation of the model's source surface (cleaned on a copy)
+ *          model a loaded or freshly trained model
+ *          o     options (NULL: defaults)
+ * Outputs: *out  the result (neuv_unwrap_mesh, report JSON with a "model" section)
+ * Returns NEUV_OK, NEUV_ERR_INPUT (empty mesh), NEUV_ERR_NOMEM or NEUV_ERR_INTERNAL. */
+neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *model, const unwrap_apply_options *o,
+                         neuv_unwrap_result **out);
+
+/* The pipeline with a face budget: when mesh has more than train_faces faces
+ * (train_faces > 0), trains on a simplified copy (mesh_simplify) and applies
+ * the model to the full mesh; otherwise runs unwrap_train. With model_out
+ * (may be NULL) the trained model is handed over (for --save-model).
+ * Returns what unwrap_train / unwrap_apply return. */
+neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *opts, int train_faces,
+                            unwrap_model **model_out, neuv_unwrap_result **out);
+
+#endif

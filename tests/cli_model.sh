@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Saved models (issue 8): unwrap --save-model on the demo's genus-2 surface,
+# apply the model to its jittered subdivision and to a 50% simplification,
+# check the guarantees and the UV consistency with `neuv compare`; a damaged
+# model exits 2 with one line.
+# The remeshes are made from the UNWRAPPED mesh so that they keep its seams
+# (jitter never moves a seam vertex, the simplifier treats UV seams as
+# attribute seams): `neuv compare` charges every corner whose vertex lies in
+# another chart of A, so a remesh whose edges cut across A's seams cannot get
+# a small mean UV distance whatever the model does.
+set -u
+NEUV="$1"
+TMP="${NEUV_TEST_TMP:-/tmp}/cli_model"
+rm -rf "$TMP"; mkdir -p "$TMP"
+pass=0; fail=0
+ok()  { pass=$((pass+1)); }
+bad() { fail=$((fail+1)); echo "FAIL: $*" >&2; }
+PY=/usr/bin/python3; [ -x "$PY" ] || PY=python3
+
+"$NEUV" demo -o "$TMP/demo" --quiet --threads 1 >/dev/null 2>&1 || "$NEUV" demo -o "$TMP/demo" --quiet || bad "demo failed"
+IN="$TMP/demo/demo-input.obj"
+"$NEUV" unwrap "$IN" -o "$TMP/src.obj" --save-model "$TMP/m.neuv" --threads 1 --quiet && ok || bad "unwrap --save-model failed"
+[ -s "$TMP/m.neuv" ] && ok || bad "no model written"
+
+# check OBJ REPORT COMPARE_JSON MAX_MEAN MIN_AGREEMENT CHECK_OVERLAP label
+check() {
+  "$NEUV" eval "$1" --json > "$TMP/eval.json" 2>/dev/null || { bad "$7: eval failed"; return; }
+  "$PY" - "$1" "$2" "$TMP/eval.json" "$3" "$4" "$5" "$6" <<'PYEOF' && ok || bad "$7: guarantee or consistency broken"
+import json, sys
+obj, rep, ev, cmp_, max_mean, min_agree, check_overlap = sys.argv[1:8]
+e = json.load(open(ev))["metrics"]; r = json.load(open(rep)); c = json.load(open(cmp_))
+assert r["model"]["charts_from"], r
+assert e["flipped"] == 0, e
+if check_overlap == "1": assert e["overlap_fraction"] == 0, e
+uv = [list(map(float, l.split()[1:3])) for l in open(obj) if l.startswith("vt ")]
+assert uv and all(0 <= a <= 1 and 0 <= b <= 1 for a, b in uv)
+assert c["uv_distance"]["mean"] <= float(max_mean), c
+assert c["chart_agreement"] >= float(min_agree), c
+PYEOF
+}
+
+# Jittered subdivision: measured mean UV distance 2.5e-6, agreement 100%.
+"$NEUV" remesh "$TMP/src.obj" -o "$TMP/sub.obj" --subdivide 1 --jitter --quiet && ok || bad "remesh subdivide failed"
+"$NEUV" unwrap "$TMP/sub.obj" --model "$TMP/m.neuv" -o "$TMP/sub-uv.obj" --report "$TMP/sub.json" --threads 1 --quiet \
+  && ok || bad "unwrap --model (subdivided) failed"
+"$NEUV" compare "$TMP/src.obj" "$TMP/sub-uv.obj" --json > "$TMP/sub-cmp.json" && ok || bad "compare failed"
+check "$TMP/sub-uv.obj" "$TMP/sub.json" "$TMP/sub-cmp.json" 0.001 0.99 1 subdivided
+
+# 50% simplification: measured mean 2.2e-5, agreement 100%.
+"$NEUV" remesh "$TMP/src.obj" -o "$TMP/simp.obj" --simplify 0.5 --quiet && ok || bad "remesh simplify failed"
+"$NEUV" unwrap "$TMP/simp.obj" --model "$TMP/m.neuv" -o "$TMP/simp-uv.obj" --report "$TMP/simp.json" --threads 1 --quiet \
+  && ok || bad "unwrap --model (simplified) failed"
+"$NEUV" compare "$TMP/src.obj" "$TMP/simp-uv.obj" --json > "$TMP/simp-cmp.json" && ok || bad "compare failed"
+check "$TMP/simp-uv.obj" "$TMP/simp.json" "$TMP/simp-cmp.json" 0.005 0.97 1 simplified
+
+# Damaged models: exit 2, one line naming the file.
+expect_2() {
+  local label="$1"; shift
+  "$@" >/dev/null 2>"$TMP/err"; local rc=$?
+  if [ $rc -eq 2 ] && [ "$(wc -l < "$TMP/err")" -eq 1 ] && grep -q "^neuv: error: " "$TMP/err"; then ok
+  else bad "$label: rc=$rc stderr=$(cat "$TMP/err")"; fi
+}
+head -c 300 "$TMP/m.neuv" > "$TMP/trunc.neuv"
+expect_2 "truncated model" "$NEUV" unwrap "$IN" --model "$TMP/trunc.neuv" -o "$TMP/x.obj"
+"$PY" -c "import sys; b=bytearray(open(sys.argv[1],'rb').read()); b[len(b)//2]^=1; open(sys.argv[2],'wb').write(b)" \
+  "$TMP/m.neuv" "$TMP/flip.neuv"
+expect_2 "corrupt model" "$NEUV" unwrap "$IN" --model "$TMP/flip.neuv" -o "$TMP/x.obj"
+"$PY" -c "import sys; b=bytearray(open(sys.argv[1],'rb').read()); b[8]=7; open(sys.argv[2],'wb').write(b)" \
+  "$TMP/m.neuv" "$TMP/ver.neuv"
+expect_2 "wrong version" "$NEUV" unwrap "$IN" --model "$TMP/ver.neuv" -o "$TMP/x.obj"
+expect_2 "missing model" "$NEUV" unwrap "$IN" --model "$TMP/none.neuv" -o "$TMP/x.obj"
+expect_2 "finetune" "$NEUV" unwrap "$IN" --model "$TMP/m.neuv" --finetune 5 -o "$TMP/x.obj"
+expect_2 "method with model" "$NEUV" unwrap "$IN" --model "$TMP/m.neuv" --method lscm -o "$TMP/x.obj"
+[ ! -e "$TMP/x.obj" ] && ok || bad "a failed unwrap left $TMP/x.obj"
+
+echo "cli_model: $pass passed, $fail failed"
+[ $fail -eq 0 ]
