@@ -297,7 +297,12 @@ static void test_sphere(void)
     CHECK(memcmp(chart, chart2, sizeof(int) * (size_t)m->nf) == 0);
     /* With no threshold the islands stay as one-face charts, and each
      * octant holding one (an annulus) is cut in two. */
-    charts_options o = {0.0};
+    charts_options o;
+    charts_default_options(&o);
+    o.min_area_share = 0.0;
+    /* Smoothing would let an island take in the faces beside the annulus
+     * cuts (that shortens the boundary); this case is about the threshold. */
+    o.smooth_sweeps = 0;
     int nc3;
     CHECK_INT(charts_from_labels(m, noisy, &o, chart2, &nc3, &r2), NEUV_OK);
     CHECK_INT(r2.merged, 0);
@@ -429,10 +434,127 @@ static void test_fertility(const neuv_mesh *m)
     free(chart); free(label);
 }
 
+/* Length of the edges whose two faces lie in different charts. */
+static double cut_length(const neuv_mesh *m, const int *chart)
+{
+    double len = 0;
+    for (int f = 0; f < m->nf; f++)
+        for (int g = f + 1; g < m->nf; g++) {
+            if (chart[f] == chart[g]) continue;
+            int shared[2], n = 0;
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++)
+                    if (m->tri[3 * f + i] == m->tri[3 * g + j] && n < 2) shared[n++] = m->tri[3 * f + i];
+            if (n == 2) {
+                const double *p = m->pos + 3 * shared[0], *q = m->pos + 3 * shared[1];
+                len += sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                            (p[2] - q[2]) * (p[2] - q[2]));
+            }
+        }
+    return len;
+}
+
+/* Even rows of the 16 x 16 grid, away from its top and bottom edges (at a
+ * mesh edge a tooth's partner face may follow it: open edges count for no
+ * chart, so the pair is as short as the straight cut). */
+static int tooth_row(double y)
+{
+    int row = (int)(y * 16);
+    return row % 2 == 0 && row >= 2 && row <= 13;
+}
+
+/* Boundary smoothing: single-triangle teeth along a straight cut go back,
+ * leaving the straight cut; charts stay disks without the global fallback;
+ * inactive charts keep their faces; the result is deterministic. */
+static void test_smooth_boundaries(void)
+{
+    neuv_mesh *m = shape_grid(16, 16, 1.0, 1.0, 0);
+    int *chart = malloc(sizeof(int) * (size_t)m->nf);
+    int teeth = 0;
+    for (int f = 0; f < m->nf; f++) {
+        double c[3];
+        centroid(m, f, c);
+        chart[f] = c[0] < 0.5 ? 0 : 1;
+    }
+    double straight = cut_length(m, chart);
+    CHECK_NEAR(straight, 1.0, 1e-9);
+    /* Teeth: faces of chart 1 with an edge on x = 0.5, every other row. */
+    for (int f = 0; f < m->nf; f++) {
+        double c[3];
+        centroid(m, f, c);
+        int on_line = 0;
+        for (int k = 0; k < 3; k++) on_line += fabs(m->pos[3 * m->tri[3 * f + k]] - 0.5) < 1e-9;
+        if (chart[f] == 1 && on_line == 2 && tooth_row(c[1])) { chart[f] = 0; teeth++; }
+    }
+    CHECK(teeth >= 6);
+    CHECK_INT(count_bad_charts(m, chart, 2), 0);
+    CHECK(cut_length(m, chart) > straight + 0.5);
+    int moves = -1;
+    CHECK_INT(charts_smooth_boundaries(m, NULL, chart, 50, &moves), NEUV_OK);
+    CHECK_INT(moves, teeth);
+    CHECK_NEAR(cut_length(m, chart), straight, 1e-9);
+    CHECK_INT(count_bad_charts(m, chart, 2), 0);
+    /* With chart 1 inactive nothing may move. */
+    int *copy = malloc(sizeof(int) * (size_t)m->nf);
+    for (int f = 0; f < m->nf; f++) {
+        double c[3];
+        centroid(m, f, c);
+        chart[f] = c[0] < 0.5 ? 0 : 1;
+        int on_line = 0;
+        for (int k = 0; k < 3; k++) on_line += fabs(m->pos[3 * m->tri[3 * f + k]] - 0.5) < 1e-9;
+        if (chart[f] == 1 && on_line == 2 && tooth_row(c[1])) chart[f] = 0;
+    }
+    memcpy(copy, chart, sizeof(int) * (size_t)m->nf);
+    int active[2] = {1, 0};
+    CHECK_INT(charts_smooth_boundaries(m, active, chart, 50, &moves), NEUV_OK);
+    CHECK_INT(moves, 0);
+    CHECK(memcmp(copy, chart, sizeof(int) * (size_t)m->nf) == 0);
+    free(copy);
+    free(chart);
+    mesh_free(m);
+
+    /* Random labels on a sphere give ragged disks; smoothing them directly
+     * (no fallback) must keep every chart a disk and shorten the cuts. */
+    m = shape_icosphere(3, 1.0);
+    int *label = malloc(sizeof(int) * (size_t)m->nf);
+    rng r;
+    rng_seed(&r, 7);
+    for (int f = 0; f < m->nf; f++) label[f] = (int)rng_below(&r, 6);
+    charts_options o;
+    charts_default_options(&o);
+    CHECK_INT(o.smooth_sweeps, 50);
+    o.smooth_sweeps = 0;
+    int nc = 0;
+    chart = malloc(sizeof(int) * (size_t)m->nf);
+    CHECK_INT(charts_from_labels(m, label, &o, chart, &nc, NULL), NEUV_OK);
+    CHECK_INT(count_bad_charts(m, chart, nc), 0);
+    double before = cut_length(m, chart);
+    int *again = malloc(sizeof(int) * (size_t)m->nf);
+    memcpy(again, chart, sizeof(int) * (size_t)m->nf);
+    CHECK_INT(charts_smooth_boundaries(m, NULL, chart, 50, &moves), NEUV_OK);
+    CHECK(moves > 0);
+    double after = cut_length(m, chart);
+    printf("  icosphere(3) random 6 labels: %d charts, cut length %.2f -> %.2f after %d moves\n", nc, before,
+           after, moves);
+    CHECK(after < before);
+    CHECK_INT(count_bad_charts(m, chart, nc), 0);
+    int moves2 = 0;
+    CHECK_INT(charts_smooth_boundaries(m, NULL, again, 50, &moves2), NEUV_OK);
+    CHECK_INT(moves2, moves);
+    CHECK(memcmp(again, chart, sizeof(int) * (size_t)m->nf) == 0);
+    /* A second pass finds nothing left to move. */
+    CHECK_INT(charts_smooth_boundaries(m, NULL, chart, 50, &moves2), NEUV_OK);
+    CHECK_INT(moves2, 0);
+    CHECK_INT(charts_smooth_boundaries(NULL, NULL, chart, 50, &moves2), NEUV_ERR_INPUT);
+    free(again); free(chart); free(label);
+    mesh_free(m);
+}
+
 int main(void)
 {
     test_cube_sides();
     test_split_long_axis();
+    test_smooth_boundaries();
     test_sphere();
     test_torus_genus2();
     neuv_mesh *m = load_fertility();

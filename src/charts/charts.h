@@ -16,6 +16,9 @@ typedef struct charts_options {
     /* Connected pieces with less than this share of the total surface area
      * are merged into a neighbour (default 0.002, see charts_default_options). */
     double min_area_share;
+    /* Sweeps of charts_smooth_boundaries over the final charts (default 50;
+     * 0 turns smoothing off). */
+    int smooth_sweeps;
 } charts_options;
 
 typedef struct charts_report {
@@ -24,10 +27,11 @@ typedef struct charts_report {
     int separated;      /* charts that fell apart into edge-connected parts and were separated */
     int annulus_cuts;   /* annuli split in two by two shortest cuts between their loops */
     int region_splits;  /* other non-disks (closed, handles, many loops, pinched) split by 2-seed growing */
+    int smoothed;       /* faces moved by boundary smoothing */
     int charts;         /* final number of charts */
 } charts_report;
 
-/* Fills o with the defaults: min_area_share = 0.002. */
+/* Fills o with the defaults: min_area_share = 0.002, smooth_sweeps = 50. */
 void charts_default_options(charts_options *o);
 
 /* Charts from a per-face label (e.g. PatchNet's argmax): (a) connected
@@ -60,11 +64,32 @@ neuv_status charts_from_labels(const neuv_mesh *m, const int *face_label,
  *
  * Inputs:
  *   m           mesh, #F by 3 faces
- *   face_chart  #F chart ids in 0..*n_charts-1 (modified in place)
+ *   face_chart  #F chart ids in 0..*n_charts-1 (modified in place); the
+ *               boundaries between the new parts are smoothed by
+ *               charts_smooth_boundaries (the other charts keep their faces)
  *   n_charts    number of charts (updated)
  *   chart_id    the chart to split; it needs at least 2 faces
  * Returns NEUV_OK, NEUV_ERR_INPUT or NEUV_ERR_NOMEM. */
 neuv_status charts_split(const neuv_mesh *m, int *face_chart, int *n_charts, int chart_id);
+
+/* Smooths chart boundaries: a face moves to the neighbouring chart it
+ * shares strictly more boundary length with than with its own chart (a
+ * spike out of its chart, or a notch in the neighbour), when the move keeps
+ * both charts topological disks (checked locally: the triangle must meet
+ * each chart in one arc). Sweeps in face order until nothing moves or
+ * max_sweeps; deterministic. Charts must be disks on entry; none empties.
+ *
+ * Inputs:
+ *   m           mesh, #F by 3 faces (manifold, consistently oriented)
+ *   active      per chart id, nonzero for charts that may give or take
+ *               faces (NULL: all)
+ *   face_chart  #F chart ids >= 0 (modified in place)
+ *   max_sweeps  sweeps over all faces at most
+ * Outputs:
+ *   moves       faces moved (may be NULL)
+ * Returns NEUV_OK, NEUV_ERR_INPUT or NEUV_ERR_NOMEM. */
+neuv_status charts_smooth_boundaries(const neuv_mesh *m, const int *active, int *face_chart, int max_sweeps,
+                                     int *moves);
 
 /* Renumbers chart ids in order of their first face (ids < 0 are left
  * alone). Inputs: nf, face_chart (#F, modified). Returns the number of

@@ -16,6 +16,9 @@ void charts_default_options(charts_options *o)
 {
     /* 0.2% of the area: see the test and report for the measurement. */
     o->min_area_share = 0.002;
+    /* Smoothing usually settles in under 10 sweeps; the cap only bounds
+     * the work on pathological input. */
+    o->smooth_sweeps = 50;
 }
 
 /* Step (a): faces joined across manifold edges with equal labels. */
@@ -90,6 +93,8 @@ neuv_status charts_from_labels(const neuv_mesh *m, const int *face_label,
     if (opts) o = *opts;
     if (!m || !face_label || !face_chart || !n_charts)
         return neuv_fail(NEUV_ERR_INPUT, "charts_from_labels: missing mesh, labels or output");
+    if (o.smooth_sweeps < 0)
+        return neuv_fail(NEUV_ERR_INPUT, "smoothing sweeps %d is negative", o.smooth_sweeps);
     if (!(o.min_area_share >= 0.0 && o.min_area_share < 1.0))
         return neuv_fail(NEUV_ERR_INPUT, "minimum chart area share %g is outside [0, 1)", o.min_area_share);
     for (int f = 0; f < m->nf; f++)
@@ -116,6 +121,20 @@ neuv_status charts_from_labels(const neuv_mesh *m, const int *face_label,
     if (st != NEUV_OK) return st;
     n = charts_renumber(m->nf, face_chart);
     if (n < 0) return neuv_fail_nomem("chart ids");
+    if (o.smooth_sweeps > 0) {
+        /* Smoothing is checked locally; should the global check still
+         * reject its result, the unsmoothed charts (already disks) stand. */
+        int *before = malloc(sizeof(int) * (size_t)m->nf);
+        if (!before) return neuv_fail_nomem("chart smoothing");
+        memcpy(before, face_chart, sizeof(int) * (size_t)m->nf);
+        st = charts_smooth_boundaries(m, NULL, face_chart, o.smooth_sweeps, &rep.smoothed);
+        if (st == NEUV_OK && rep.smoothed > 0 && verify_charts(m, face_chart, n) != NEUV_OK) {
+            memcpy(face_chart, before, sizeof(int) * (size_t)m->nf);
+            rep.smoothed = 0;
+        }
+        free(before);
+        if (st != NEUV_OK) return st;
+    }
     st = verify_charts(m, face_chart, n);
     if (st != NEUV_OK) return st;
     rep.charts = n;

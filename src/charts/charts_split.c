@@ -3,10 +3,36 @@
 #include "charts/charts.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "charts/chart_local.h"
 #include "charts/chart_steps.h"
 #include "core/error.h"
+
+/* Smooths the boundaries between the parts of a split (chart_id and the
+ * ids from first_new on): the regions grown on the face graph meet along a
+ * saw-tooth. Other charts neither give nor take faces, so their flattenings
+ * stay valid. Should a part fail the disk check after all, the unsmoothed
+ * parts stand. */
+static neuv_status smooth_parts(const neuv_mesh *m, int *face_chart, int nc, int chart_id, int first_new)
+{
+    int *active = calloc((size_t)nc, sizeof(int));
+    int *before = malloc(sizeof(int) * (size_t)m->nf);
+    if (!active || !before) { free(active); free(before); return neuv_fail_nomem("chart smoothing"); }
+    active[chart_id] = 1;
+    for (int c = first_new; c < nc; c++) active[c] = 1;
+    memcpy(before, face_chart, sizeof(int) * (size_t)m->nf);
+    int moves = 0;
+    neuv_status st = charts_smooth_boundaries(m, active, face_chart, 50, &moves);
+    for (int c = 0; c < nc && st == NEUV_OK && moves > 0; c++) {
+        if (!active[c]) continue;
+        int d = chart_is_disk(m, face_chart, c);
+        if (d < 0) st = neuv_fail_nomem("chart smoothing");
+        if (d == 0) { memcpy(face_chart, before, sizeof(int) * (size_t)m->nf); break; }
+    }
+    free(active); free(before);
+    return st;
+}
 
 neuv_status charts_split(const neuv_mesh *m, int *face_chart, int *n_charts, int chart_id)
 {
@@ -50,6 +76,7 @@ neuv_status charts_split(const neuv_mesh *m, int *face_chart, int *n_charts, int
     if ((st = charts_make_disks(m, &g, face_chart, &nc, chart_id, NULL)) != NEUV_OK) goto done;
     for (int c = first_new; c < first_new + parts - 1 && st == NEUV_OK; c++)
         st = charts_make_disks(m, &g, face_chart, &nc, c, NULL);
+    if (st == NEUV_OK) st = smooth_parts(m, face_chart, nc, chart_id, first_new);
     *n_charts = nc;
 done:
     chart_local_free(&L);

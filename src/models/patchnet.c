@@ -8,7 +8,13 @@
  *   - Auto K splits failing charts with charts_split instead of retraining
  *     with a larger K: one LSCM per new chart costs milliseconds, a retrain
  *     costs the whole training time again, and the split loop always
- *     terminates on a disk that flattens (small enough charts are nearly flat). */
+ *     terminates on a disk that flattens (small enough charts are nearly flat).
+ *   - After the split loop, adjacent charts merge back while the union
+ *     flattens with qce_mean < 1.03 and fills >= 0.8 of its UV convex hull:
+ *     merging up to the split limit 1.15 left spot with 2 charts, qce_mean
+ *     1.12 and packing 0.55; 1.05 gave 7 charts and qce_mean 1.049, too
+ *     close to the 1.05 bar; without the convexity rule cow packed at 0.24
+ *     (bench/RESULTS.md "Charts quality (issues 6-7)"). */
 #include "models/patchnet.h"
 
 #include <math.h>
@@ -25,6 +31,8 @@
 #include "losses/patch_losses.h"
 #include "metrics/uv_metrics.h"
 #include "nn/adam.h"
+#include "unwrap/chart_uv_check.h"
+#include "atlas/convex_hull.h"
 
 void patchnet_default_options(patchnet_options *o)
 {
@@ -44,6 +52,8 @@ void patchnet_default_options(patchnet_options *o)
     o->plateau_tol = 1e-3;
     o->lr = 1e-3f;
     o->min_area_share = 0.002;
+    o->merge_distortion = 1.03;
+    o->min_convexity = 0.8;
 }
 
 neuv_status patchnet_apply_preset(patchnet_options *o, const char *preset)
@@ -293,11 +303,39 @@ neuv_status patchnet_infer(const patchnet_model *model, const neuv_mesh *m, cons
     return patchnet_infer_features(model, m, ops, face_label, NULL, NULL);
 }
 
-neuv_status patchnet_chart_lscm_quality(const neuv_mesh *m, const int *face_chart, int id, double *qce_mean,
-                                        int *flipped)
+/* LSCM of chart `id` alone: qce_mean, the flipped or degenerate faces,
+ * and the boundary self-crossings (chart_uv_check: the self-overlaps the
+ * repair stage would otherwise split later). crossings may be NULL. */
+/* UV area over the area of its convex hull: 1 for a convex footprint,
+ * small for a snake or a comb, which the packer cannot nest. */
+static double uv_convexity(const neuv_mesh *sub, const double *uv)
 {
+    int *hull = malloc(sizeof(int) * (size_t)sub->nv);
+    if (!hull) return -1;
+    int h = convex_hull_2d(uv, sub->nv, hull);
+    double hull_area = 0, area = 0;
+    for (int i = 0; i < h; i++) {
+        const double *p = uv + 2 * hull[i], *r = uv + 2 * hull[(i + 1) % h];
+        hull_area += p[0] * r[1] - p[1] * r[0];
+    }
+    for (int f = 0; f < sub->nf; f++) {
+        const double *a = uv + 2 * sub->tri[3 * f], *b = uv + 2 * sub->tri[3 * f + 1], *c = uv + 2 * sub->tri[3 * f + 2];
+        area += (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    }
+    free(hull);
+    if (h < 0) return -1;
+    return hull_area > 0 ? fabs(area) / hull_area : 1.0;
+}
+
+static double g_convexity; /* last judged chart (set by chart_lscm_judge) */
+
+static neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, int id, double *qce_mean,
+                                    int *flipped, int *crossings)
+{
+    g_convexity = 1.0;
     *qce_mean = INFINITY;
     *flipped = 0;
+    if (crossings) *crossings = 0;
     neuv_mesh *sub = NULL;
     int *vmap = NULL, *fmap = NULL;
     neuv_status st = chart_submesh(m, face_chart, id, &sub, &vmap, &fmap);
@@ -318,11 +356,24 @@ neuv_status patchnet_chart_lscm_quality(const neuv_mesh *m, const int *face_char
             *qce_mean = isfinite(mt.qce_mean) ? mt.qce_mean : INFINITY;
             *flipped = mt.flipped + mt.degenerate_uv;
         }
-        if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return st; }
+        if (!st && crossings) {
+            chart_uv_check chk;
+            int ok = chart_uv_check_run(sub, uv, &chk);
+            if (ok < 0) st = NEUV_ERR_NOMEM;
+            else *crossings = chk.boundary_crossings;
+            if (!st && (g_convexity = uv_convexity(sub, uv)) < 0) st = NEUV_ERR_NOMEM;
+        }
+        if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return neuv_fail_nomem("chart check"); }
     }
     free(uv);
     mesh_free(sub);
     return NEUV_OK;
+}
+
+neuv_status patchnet_chart_lscm_quality(const neuv_mesh *m, const int *face_chart, int id, double *qce_mean,
+                                        int *flipped)
+{
+    return chart_lscm_judge(m, face_chart, id, qce_mean, flipped, NULL);
 }
 
 /* Grows a per-chart array to n entries (new entries: dirty). */
@@ -345,6 +396,76 @@ static neuv_status grow_quality(double **q, int **flip, int **dirty, int *cap, i
     return NEUV_OK;
 }
 
+/* Merges adjacent charts back together while the union still flattens:
+ * the split loop and the argmax both cut more than needed (a split can go
+ * across a chart that one of its neighbours could take whole). Pairs are
+ * tried longest shared boundary first, each chart in one merge per round;
+ * a merge stands when the union is a disk whose LSCM has qce_mean below
+ * `limit`, no flipped face, no boundary self-crossing, and a UV footprint
+ * filling at least min_cvx of its convex hull (snakes and combs pack badly). The surviving
+ * ids are compacted in order, with their qualities. */
+static neuv_status merge_charts(const neuv_mesh *m, double limit, double min_cvx, int *face_chart,
+                                int *n_charts, double *q, int *flip, int *merges)
+{
+    int nf = m->nf;
+    int *gone = NULL, *moved = NULL, *order = NULL;
+    double *len = NULL;
+    neuv_status st = NEUV_OK;
+    for (;;) {
+        chart_adjacency adj;
+        if ((st = chart_adjacency_build(m, face_chart, &adj))) break;
+        int nc = *n_charts;
+        free(gone); free(moved); free(order); free(len);
+        gone = calloc((size_t)nc, sizeof(int));
+        moved = malloc(sizeof(int) * (size_t)nf);
+        order = malloc(sizeof(int) * (size_t)(adj.n > 0 ? adj.n : 1));
+        len = malloc(sizeof(double) * (size_t)(adj.n > 0 ? adj.n : 1));
+        if (!gone || !moved || !order || !len) { chart_adjacency_free(&adj); st = neuv_fail_nomem("chart merge"); break; }
+        /* Insertion order by length, descending (ties: pair order), stable. */
+        for (int i = 0; i < adj.n; i++) {
+            int j = i;
+            while (j > 0 && adj.length[order[j - 1]] < adj.length[i]) { order[j] = order[j - 1]; j--; }
+            order[j] = i;
+        }
+        int any = 0;
+        for (int r = 0; r < adj.n && !st; r++) {
+            int a = adj.a[order[r]], b = adj.b[order[r]];
+            if (gone[a] || gone[b] || gone[a] < 0 || gone[b] < 0) continue;
+            int n = 0;
+            for (int f = 0; f < nf; f++)
+                if (face_chart[f] == b) { face_chart[f] = a; moved[n++] = f; }
+            int disk = chart_is_disk(m, face_chart, a);
+            double qa = INFINITY;
+            int fl = 1, cross = 1;
+            if (disk < 0) st = neuv_fail_nomem("chart merge");
+            else if (disk) st = chart_lscm_judge(m, face_chart, a, &qa, &fl, &cross);
+            if (!st && disk == 1 && qa < limit && fl == 0 && cross == 0 && g_convexity >= min_cvx) {
+                q[a] = qa;
+                flip[a] = 0;
+                gone[b] = 1;
+                gone[a] = -1; /* changed: no second merge this round */
+                any = 1;
+                (*merges)++;
+            } else {
+                for (int i = 0; i < n; i++) face_chart[moved[i]] = b;
+            }
+        }
+        chart_adjacency_free(&adj);
+        if (st || !any) break;
+        /* Compact: new id = old id minus the merged-away ids below it. */
+        int k = 0;
+        for (int c = 0; c < nc; c++) {
+            int keep = gone[c] != 1;
+            if (keep) { q[k] = q[c]; flip[k] = flip[c]; gone[c] = k++; }
+            else gone[c] = -2;
+        }
+        for (int f = 0; f < nf; f++) face_chart[f] = gone[face_chart[f]];
+        *n_charts = k;
+    }
+    free(gone); free(moved); free(order); free(len);
+    return st;
+}
+
 /* The chart check and split loop (auto K), or only the check (fixed K). */
 static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, int *face_chart, int *n_charts,
                                  patchnet_report *rep)
@@ -359,7 +480,10 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
     while (!st) {
         for (int c = 0; c < *n_charts && !st; c++)
             if (dirty[c]) {
-                st = patchnet_chart_lscm_quality(m, face_chart, c, &q[c], &flip[c]);
+                int cross = 0;
+                st = chart_lscm_judge(m, face_chart, c, &q[c], &flip[c], &cross);
+                /* A self-overlapping boundary fails like a flip. */
+                flip[c] += cross;
                 dirty[c] = 0;
             }
         if (st || !auto_k) break;
@@ -390,7 +514,14 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
         if (!any) break;
         neuv_progress("charts", 1.0, "%d charts after %d splits", *n_charts, splits);
     }
+    /* Merging back is stricter than the split loop (see patchnet.c's header
+     * and bench/RESULTS.md): a union passes under merge_distortion and
+     * min_convexity, or the mean distortion and the packing suffer. */
+    int merges = 0;
+    if (!st && auto_k && o->merge_distortion > 0)
+        st = merge_charts(m, o->merge_distortion, o->min_convexity, face_chart, n_charts, q, flip, &merges);
     if (!st && rep) {
+        rep->merges = merges;
         rep->splits = splits;
         rep->charts = *n_charts;
         rep->worst_qce = 0;

@@ -7,7 +7,8 @@
  * Number of charts: a fixed K (`charts` > 0), or auto (`charts` = 0): train
  * with a small K, then split every chart whose LSCM flattening has qce_mean
  * >= max_distortion or a flipped face, until all pass or max_charts is
- * reached (see patchnet.c for why splitting rather than retraining).
+ * reached (see patchnet.c for why splitting rather than retraining), then
+ * merge adjacent charts back while their union flattens well.
  *
  * Usage:
  *     patchnet_options o;  patchnet_default_options(&o);
@@ -40,6 +41,9 @@ typedef struct patchnet_options {
     double plateau_tol;    /* improves on the W before by less than this share (25, 1e-3) */
     float lr;              /* Adam learning rate (1e-3) */
     double min_area_share; /* charts_from_labels fragment threshold (0.002) */
+    double merge_distortion; /* auto: adjacent charts merge while the union's LSCM qce_mean is
+                              * below this (1.03); <= 0 turns merging off */
+    double min_convexity;  /* auto: and its UV area fills this share of its convex hull (0.8) */
 } patchnet_options;
 
 /* The `fast` preset (the default). */
@@ -63,6 +67,7 @@ typedef struct patchnet_report {
     double worst_qce;       /* largest chart LSCM qce_mean */
     int flipped;            /* LSCM flipped faces over all charts */
     double chart_check_seconds;
+    int merges;             /* auto: chart pairs merged back after the split loop */
 } patchnet_report;
 
 /* The trained network, kept so it can be saved (its nn_params) and applied to
