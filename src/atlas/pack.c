@@ -10,6 +10,8 @@
 #include "core/error.h"
 
 static const double half_pi = 1.57079632679489661923;
+/* Finest extra turn: a placement index j < pack_turns_max is the turn j * (pi/2) / pack_turns_max. */
+enum { pack_turns_max = 4 };
 
 /* One chart as the packer sees it: its faces and UVs (ranges into the
  * packer's own arrays) and its shape after density scaling and turning to
@@ -22,14 +24,21 @@ typedef struct chart_info {
     double minx, miny;      /* corner of the rectangle after scale and rotation */
     double W, H;            /* rectangle sides */
     double area;            /* UV area after density scaling */
+    double fit_angle;       /* extra turn (on top of theta) that minimizes the longer box side */
+    double fit_side;        /* that longer side: the chart fits the atlas only if g fit_side does */
 } chart_info;
 
-typedef struct placement { int x, y, k, w, h; } placement;
+/* Where a chart went: turned by extra angle j (see chart_angle) then
+ * by k quarter turns, its w by h pixel box with corner (x, y). */
+typedef struct placement { int x, y, k, w, h, j; } placement;
+
+/* Orders the charts are placed in (largest first by each key). */
+enum { order_rect_area, order_perimeter, order_short_side, order_long_side, PACK_ORDERS };
 
 typedef struct pack_ctx {
     int ncharts;
     chart_info *ch;
-    int *sorted[3];         /* chart ids in the order of each placement heuristic */
+    int *sorted[PACK_ORDERS]; /* chart ids in the order of each placement heuristic */
     int *ltri;              /* #F by 3, chart-local UV indices, faces grouped by chart */
     double *L;              /* #UV' by 2, chart UVs scaled, rotated, corner at the origin */
     int max_verts;
@@ -59,15 +68,19 @@ static double tri_area_2d(const double *a, const double *b, const double *c)
 /* Placement heuristics tried at each scale, best first on the samples:
  * (order of charts, choice among rotations). A scale counts as fitting when
  * any of them fits, so trying more only ever raises the final scale. */
-enum { order_rect_area, order_perimeter, order_short_side };
 enum { choose_lowest_top, choose_lowest_bottom };
-typedef struct pack_heuristic { int order, choose; } pack_heuristic;
-#define PACK_HEURISTICS 4
+/* turns: extra turns j * (pi/2) / turns tried per quarter turn (plus the
+ * turn of the chart's smallest bounding square). */
+typedef struct pack_heuristic { int order, choose, turns; } pack_heuristic;
+#define PACK_HEURISTICS 7
 static const pack_heuristic heuristics[PACK_HEURISTICS] = {
-    {order_perimeter, choose_lowest_bottom},
-    {order_short_side, choose_lowest_top},
-    {order_rect_area, choose_lowest_bottom},
-    {order_rect_area, choose_lowest_top},
+    {order_perimeter, choose_lowest_bottom, 1},
+    {order_short_side, choose_lowest_top, 1},
+    {order_rect_area, choose_lowest_bottom, 1},
+    {order_rect_area, choose_lowest_top, 1},
+    {order_perimeter, choose_lowest_bottom, 4},
+    {order_rect_area, choose_lowest_top, 4},
+    {order_long_side, choose_lowest_top, 4},
 };
 
 typedef struct chart_order { double key; int id; } chart_order;
@@ -80,9 +93,42 @@ static int cmp_chart_order(const void *a, const void *b)
     return x->id - y->id;
 }
 
+/* Extra turn j of chart c on top of its minimum-area rectangle. */
+static double chart_angle(const chart_info *c, int j)
+{
+    return j < pack_turns_max ? j * half_pi / pack_turns_max : c->fit_angle;
+}
+
+/* Chart c turned by its extra angle j (chart_angle) and scaled by the
+ * global scale g, its bounding corner moved to the origin: q (#V by 2) in
+ * pixels, *w by *h its pixel box, (*mx, *my) the corner that was removed,
+ * so q = g Rot_j L - (mx, my). The packer rasterizes these points and
+ * writes them out, so both must come from this one function. */
+static void chart_oriented(const pack_ctx *P, const chart_info *c, int j, double g, double *q,
+                           int *w, int *h, double *mx, double *my)
+{
+    int nv = c->v_end - c->v_begin;
+    const double *L = P->L + 2 * (size_t)c->v_begin;
+    double a = chart_angle(c, j), cs = j ? cos(a) : 1, sn = j ? sin(a) : 0;
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int v = 0; v < nv; v++) {
+        double x = g * (cs * L[2 * v] - sn * L[2 * v + 1]), y = g * (sn * L[2 * v] + cs * L[2 * v + 1]);
+        q[2 * v] = x; q[2 * v + 1] = y;
+        if (x < lo[0]) lo[0] = x;
+        if (x > hi[0]) hi[0] = x;
+        if (y < lo[1]) lo[1] = y;
+        if (y > hi[1]) hi[1] = y;
+    }
+    if (nv == 0) lo[0] = lo[1] = hi[0] = hi[1] = 0;
+    for (int v = 0; v < nv; v++) { q[2 * v] -= lo[0]; q[2 * v + 1] -= lo[1]; }
+    *mx = lo[0]; *my = lo[1];
+    *w = (int)floor(hi[0] - lo[0] + 1e-7) + 1;
+    *h = (int)floor(hi[1] - lo[1] + 1e-7) + 1;
+}
+
 /* One packing at global scale g (pixels per world unit). Returns 1 when all
- * charts fit (pl filled), 0 when one does not (placed_px: pixels placed so
- * far, total_px: all pixels), -1 on allocation failure. */
+ * charts fit (pl filled), 0 when one does not (*frac_placed: share of the
+ * charts' box area placed so far), -1 on allocation failure. */
 static int pack_attempt(const pack_ctx *P, const pack_heuristic *hs, double g, placement *pl, double *frac_placed)
 {
     const int R = P->resolution, pad = P->padding;
@@ -95,71 +141,109 @@ static int pack_attempt(const pack_ctx *P, const pack_heuristic *hs, double g, p
         if (c->f_end > c->f_begin) total += (g * c->W + 1) * (g * c->H + 1);
     }
     int rc = 1;
+    footprint fp[4], best_fp;
+    footprint_spans sp[4];
+    memset(fp, 0, sizeof fp);
+    memset(sp, 0, sizeof sp);
+    memset(&best_fp, 0, sizeof best_fp);
     for (int n = 0; n < P->ncharts && rc == 1; n++) {
         int ci = P->sorted[hs->order][n];
         const chart_info *c = &P->ch[ci];
         if (c->f_end == c->f_begin) continue;
-        int nv = c->v_end - c->v_begin;
-        for (int v = 0; v < nv; v++) {
-            q[2 * v] = g * P->L[2 * (size_t)(c->v_begin + v)];
-            q[2 * v + 1] = g * P->L[2 * (size_t)(c->v_begin + v) + 1];
-        }
-        int w = (int)floor(g * c->W + 1e-7) + 1, h = (int)floor(g * c->H + 1e-7) + 1;
-        if ((w > R - 2 * pad && h > R - 2 * pad) || w > R || h > R) { rc = 0; break; }
-        footprint fp[4];
-        footprint_spans sp[4];
-        int have[4] = {0, 0, 0, 0};
-        memset(fp, 0, sizeof fp);
-        memset(sp, 0, sizeof sp);
-        if (footprint_rasterize(q, P->ltri + 3 * (size_t)c->f_begin, c->f_end - c->f_begin, w, h, &fp[0]) != 0) {
-            rc = -1;
-            break;
-        }
-        have[0] = 1;
-        for (int k = 1; k < 4 && rc == 1; k++) {
-            if (footprint_rotate(&fp[0], k, &fp[k]) != 0) { rc = -1; break; }
-            /* A half turn that maps the footprint onto itself finds the same places. */
-            have[k] = !(k >= 2 && footprint_equal(&fp[k], &fp[k - 2]));
-        }
-        for (int k = 0; k < 4 && rc == 1; k++)
-            if (have[k] && footprint_to_spans(&fp[k], &sp[k]) != 0) rc = -1;
-        int best_k = -1, bx = 0, by = 0, best_top = R + 1;
-        for (int k = 0; k < 4 && rc == 1; k++) {
-            if (!have[k]) continue;
-            int x, y;
-            /* Lowest top edge wins (keeps the filled part of the square low), then leftmost. */
-            if (hs->choose == choose_lowest_top) {
-                /* Lowest top edge wins (keeps the filled part of the square low), then leftmost. */
-                if (occupancy_find(&occ, &sp[k], best_top, &x, &y)) {
-                    int top = y + fp[k].h;
-                    if (top < best_top || (top == best_top && x < bx)) {
-                        best_top = top; best_k = k; bx = x; by = y;
-                    }
-                }
-            } else if (occupancy_find(&occ, &sp[k], best_k < 0 ? R + 1 : by + fp[k].h + 1, &x, &y)) {
-                /* Lowest bottom edge wins, then leftmost. */
-                if (best_k < 0 || y < by || (y == by && x < bx)) { best_k = k; bx = x; by = y; }
+        int best_k = -1, best_j = 0, bx = 0, by = 0, best_top = R + 1, bw = 0, bh = 0;
+        for (int j = 0; j <= pack_turns_max && rc == 1; j++) {
+            /* Turn j is one of this heuristic's turns, or the smallest square's turn when it is
+             * new and either this heuristic tries free turns or the chart fits no other way. */
+            if (j < pack_turns_max ? j % (pack_turns_max / hs->turns) != 0
+                                   : c->fit_angle == 0 || (hs->turns == 1 && g * fmax(c->W, c->H) + 1 <= R - 2 * pad))
+                continue;
+            int w, h;
+            double mx, my;
+            chart_oriented(P, c, j, g, q, &w, &h, &mx, &my);
+            if ((w > R - 2 * pad && h > R - 2 * pad) || w > R || h > R) continue;
+            if (footprint_rasterize(q, P->ltri + 3 * (size_t)c->f_begin, c->f_end - c->f_begin, w, h, &fp[0]) != 0) {
+                rc = -1;
+                break;
             }
+            int have[4] = {1, 0, 0, 0};
+            for (int k = 1; k < 4 && rc == 1; k++) {
+                if (footprint_rotate(&fp[0], k, &fp[k]) != 0) { rc = -1; break; }
+                /* A half turn that maps the footprint onto itself finds the same places. */
+                have[k] = !(k >= 2 && footprint_equal(&fp[k], &fp[k - 2]));
+            }
+            for (int k = 0; k < 4 && rc == 1; k++)
+                if (have[k] && footprint_to_spans(&fp[k], &sp[k]) != 0) rc = -1;
+            int won = -1;
+            for (int k = 0; k < 4 && rc == 1; k++) {
+                if (!have[k]) continue;
+                int x, y;
+                if (hs->choose == choose_lowest_top) {
+                    /* Lowest top edge wins (keeps the filled part of the square low), then leftmost. */
+                    if (occupancy_find(&occ, &sp[k], best_top, &x, &y)) {
+                        int top = y + fp[k].h;
+                        if (top < best_top || (top == best_top && x < bx)) {
+                            best_top = top; won = k; bx = x; by = y;
+                        }
+                    }
+                } else if (occupancy_find(&occ, &sp[k], best_k < 0 && won < 0 ? R + 1 : by + fp[k].h + 1, &x, &y)) {
+                    /* Lowest bottom edge wins, then leftmost. */
+                    if ((best_k < 0 && won < 0) || y < by || (y == by && x < bx)) { won = k; bx = x; by = y; }
+                }
+            }
+            if (won >= 0) {
+                best_k = won; best_j = j; bw = w; bh = h;
+                footprint_free(&best_fp);
+                best_fp = fp[won];
+                fp[won].bits = NULL;
+            }
+            for (int k = 0; k < 4; k++) { footprint_free(&fp[k]); footprint_spans_free(&sp[k]); }
         }
         if (rc == 1 && best_k < 0) rc = 0;
         if (rc == 1) {
             if (pad > 0) {
                 footprint dil;
-                if (footprint_dilate(&fp[best_k], pad, &dil) != 0) rc = -1;
+                if (footprint_dilate(&best_fp, pad, &dil) != 0) rc = -1;
                 else occupancy_mark(&occ, &dil, bx - pad, by - pad);
                 footprint_free(&dil);
             } else {
-                occupancy_mark(&occ, &fp[best_k], bx, by);
+                occupancy_mark(&occ, &best_fp, bx, by);
             }
-            pl[ci].x = bx; pl[ci].y = by; pl[ci].k = best_k; pl[ci].w = w; pl[ci].h = h;
+            pl[ci].x = bx; pl[ci].y = by; pl[ci].k = best_k; pl[ci].w = bw; pl[ci].h = bh; pl[ci].j = best_j;
             placed += (g * c->W + 1) * (g * c->H + 1);
         }
-        for (int k = 0; k < 4; k++) { footprint_free(&fp[k]); footprint_spans_free(&sp[k]); }
+        footprint_free(&best_fp);
     }
     occupancy_free(&occ);
     free(q);
     *frac_placed = total > 0 ? placed / total : 1;
     return rc;
+}
+
+/* The extra turn in [0, pi/2) whose bounding box has the shortest longer
+ * side, sampled every half degree: a long thin (or curved) chart fits the
+ * square along its diagonal at a scale where its minimum-area rectangle
+ * would not. Kept only when it beats the rectangle by more than 1%. */
+static void chart_fit_angle(const double *L, int nv, chart_info *c)
+{
+    const int steps = 180;
+    c->fit_angle = 0;
+    c->fit_side = fmax(c->W, c->H);
+    double best = c->fit_side;
+    for (int t = 1; t < steps; t++) {
+        double a = t * half_pi / steps, cs = cos(a), sn = sin(a);
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        for (int v = 0; v < nv; v++) {
+            double x = cs * L[2 * v] - sn * L[2 * v + 1], y = sn * L[2 * v] + cs * L[2 * v + 1];
+            if (x < lo[0]) lo[0] = x;
+            if (x > hi[0]) hi[0] = x;
+            if (y < lo[1]) lo[1] = y;
+            if (y > hi[1]) hi[1] = y;
+        }
+        double side = fmax(hi[0] - lo[0], hi[1] - lo[1]);
+        if (side < best) { best = side; c->fit_angle = a; }
+    }
+    if (best < 0.99 * c->fit_side) c->fit_side = best;
+    else c->fit_angle = 0;
 }
 
 /* Builds the per-chart data: faces grouped by chart, UVs split per chart,
@@ -170,7 +254,7 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
     int nf = m->nf;
     P->ncharts = ncharts;
     P->ch = calloc((size_t)ncharts + 1, sizeof *P->ch);
-    for (int h = 0; h < 3; h++) P->sorted[h] = malloc(sizeof *P->sorted[h] * ((size_t)ncharts + 1));
+    for (int h = 0; h < PACK_ORDERS; h++) P->sorted[h] = malloc(sizeof *P->sorted[h] * ((size_t)ncharts + 1));
     P->ltri = malloc(sizeof *P->ltri * 3 * ((size_t)nf + 1));
     int *order = malloc(sizeof *order * ((size_t)nf + 1));
     int *start = calloc((size_t)ncharts + 2, sizeof *start);
@@ -179,7 +263,7 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
     *new_tri_uv = malloc(sizeof **new_tri_uv * 3 * ((size_t)nf + 1));
     *old_of_new = malloc(sizeof **old_of_new * 3 * ((size_t)nf + 1));
     neuv_status st = NEUV_OK;
-    if (!P->ch || !P->sorted[0] || !P->sorted[1] || !P->sorted[2] || !P->ltri || !order || !start || !stamp || !map || !*new_tri_uv || !*old_of_new) {
+    if (!P->ch || !P->sorted[0] || !P->sorted[1] || !P->sorted[2] || !P->sorted[3] || !P->ltri || !order || !start || !stamp || !map || !*new_tri_uv || !*old_of_new) {
         st = neuv_fail_nomem("atlas packing");
         goto done;
     }
@@ -262,13 +346,14 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
         for (int v = 0; v < nv; v++) { L[2 * v] -= lo[0]; L[2 * v + 1] -= lo[1]; }
         ci->minx = lo[0]; ci->miny = lo[1];
         ci->W = hi[0] - lo[0]; ci->H = hi[1] - lo[1];
+        chart_fit_angle(L, nv, ci);
     }
     chart_order *co = malloc(sizeof *co * ((size_t)ncharts + 1));
     if (!co) { st = neuv_fail_nomem("atlas packing"); goto done; }
-    for (int h = 0; h < 3; h++) {
+    for (int h = 0; h < PACK_ORDERS; h++) {
         for (int c = 0; c < ncharts; c++) {
             const chart_info *ci = &P->ch[c];
-            co[c].key = h == order_rect_area ? ci->W * ci->H : h == order_perimeter ? ci->W + ci->H : fmin(ci->W, ci->H);
+            co[c].key = h == order_rect_area ? ci->W * ci->H : h == order_perimeter ? ci->W + ci->H : h == order_short_side ? fmin(ci->W, ci->H) : ci->fit_side;
             co[c].id = c;
         }
         qsort(co, (size_t)ncharts, sizeof *co, cmp_chart_order);
@@ -282,18 +367,24 @@ done:
 
 static void pack_ctx_free(pack_ctx *P)
 {
-    free(P->ch); free(P->sorted[0]); free(P->sorted[1]); free(P->sorted[2]); free(P->ltri); free(P->L);
+    free(P->ch); for (int h = 0; h < PACK_ORDERS; h++) free(P->sorted[h]);
+    free(P->ltri); free(P->L);
     memset(P, 0, sizeof *P);
 }
 
 /* The similarity of chart c placed by pl at global scale g (see pack.h):
- * uv' = (1/R) (Rot_k (g (Rot_theta s uv - min)) + off_k + (x, y)). */
-static atlas_chart_transform chart_transform(const chart_info *c, const placement *pl, double g, int R)
+ * uv' = (1/R) (Rot_k (g Rot_j (Rot_theta s uv - min) - m_j) + off_k + (x, y)),
+ * with m_j the corner chart_oriented removed. */
+static atlas_chart_transform chart_transform(const pack_ctx *P, const chart_info *c, const placement *pl,
+                                             double g, double mjx, double mjy)
 {
+    const int R = P->resolution;
     atlas_chart_transform t;
+    double a = chart_angle(c, pl->j), cs = pl->j ? cos(a) : 1, sn = pl->j ? sin(a) : 0;
     t.scale = g * c->s / R;
-    t.angle = c->theta + pl->k * half_pi;
-    double mx = g * c->minx, my = g * c->miny, ox, oy;
+    t.angle = c->theta + a + pl->k * half_pi;
+    /* Everything subtracted before the quarter turn: q = g Rot_j Rot_theta s uv - (mx, my). */
+    double mx = g * (cs * c->minx - sn * c->miny) + mjx, my = g * (sn * c->minx + cs * c->miny) + mjy, ox, oy;
     switch (pl->k) {
     case 0: ox = -mx; oy = -my; break;
     case 1: ox = my + pl->h; oy = -mx; break;
@@ -305,21 +396,29 @@ static atlas_chart_transform chart_transform(const chart_info *c, const placemen
     return t;
 }
 
-/* Same map as atlas_chart_transform_apply but with the quarter turn done
- * exactly, so the UVs land where the footprint was rasterized. */
-static void chart_place_uv(const chart_info *c, const placement *pl, double g, int R,
-                           const double *L, double out[2])
+/* Same map as atlas_chart_transform_apply but from the very points that
+ * were rasterized (q, from chart_oriented) with the quarter turn done
+ * exactly, so the UVs land where the footprint was. */
+static void chart_place_uv(const placement *pl, int R, const double q[2], double out[2])
 {
-    double x = g * L[0], y = g * L[1], px, py;
+    double x = q[0], y = q[1], px, py;
     switch (pl->k) {
     case 0: px = x; py = y; break;
     case 1: px = pl->h - y; py = x; break;
     case 2: px = pl->w - x; py = pl->h - y; break;
     default: px = y; py = pl->w - x; break;
     }
-    (void)c;
     out[0] = (px + pl->x) / R;
     out[1] = (py + pl->y) / R;
+}
+
+/* How many of the heuristics to try. With thousands of charts the time
+ * goes to placements, and small charts fill the gaps whatever the order:
+ * one is enough; the free turns (4 times the placements each) pay off on
+ * tens to hundreds of large, long or concave charts. */
+static int pack_heuristic_count(int ncharts)
+{
+    return ncharts > 1000 ? 1 : ncharts > 300 ? 4 : PACK_HEURISTICS;
 }
 
 neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
@@ -350,13 +449,14 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     P.padding = o.padding;
     int *new_tri_uv = NULL, *old_of_new = NULL, nuv_new = 0;
     placement *pl = NULL, *best_pl = NULL;
-    double *uv_new = NULL;
+    double *uv_new = NULL, *q = NULL;
     neuv_status st = pack_prepare(m, face_chart, ncharts, o.keep_scale, &P, &new_tri_uv, &old_of_new, &nuv_new);
     if (st != NEUV_OK) goto done;
     pl = calloc((size_t)ncharts + 1, sizeof *pl);
     best_pl = calloc((size_t)ncharts + 1, sizeof *best_pl);
     uv_new = malloc(sizeof *uv_new * 2 * ((size_t)nuv_new + 1));
-    if (!pl || !best_pl || !uv_new) { st = neuv_fail_nomem("atlas packing"); goto done; }
+    q = malloc(sizeof *q * 2 * ((size_t)P.max_verts + 1));
+    if (!pl || !best_pl || !uv_new || !q) { st = neuv_fail_nomem("atlas packing"); goto done; }
 
     /* Upper bound on the global scale: the charts' total area cannot exceed
      * the free square, nor can the longest chart side. Then shrink until
@@ -366,20 +466,18 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
         const chart_info *ci = &P.ch[c];
         if (ci->f_end == ci->f_begin) continue;
         area += ci->area;
-        if (fmax(ci->W, ci->H) > longest) longest = fmax(ci->W, ci->H);
+        if (ci->fit_side > longest) longest = ci->fit_side;
     }
     double g = INFINITY;
     if (area > 0) g = inner / sqrt(area);
     if (longest > 0) g = fmin(g, (inner - 1) / longest);
     if (!isfinite(g) || g <= 0) g = 1;
     double lo = 0, hi = 0, g0 = g;
-    int attempts = 0;
+    int attempts = 0, steps = 0;
     for (;;) {
         double frac = 0;
         int rc = 0;
-        /* With thousands of charts the time goes to placements, and small
-         * charts fill the gaps whatever the order: one heuristic is enough. */
-        int nh = ncharts > 1000 ? 1 : PACK_HEURISTICS;
+        int nh = pack_heuristic_count(ncharts);
         for (int h = 0; h < nh && rc == 0; h++) {
             double fh;
             rc = pack_attempt(&P, &heuristics[h], g, pl, &fh);
@@ -395,7 +493,8 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
             hi = g;
         }
         if (lo > 0 && hi / lo < 1.003) break;
-        if (attempts >= 40) break;
+        /* Scale steps, not tries: a failing step costs one try per heuristic. */
+        if (++steps >= 30) break;
         if (lo > 0) g = sqrt(lo * hi);
         else {
             double shrink = sqrt(frac);
@@ -413,12 +512,16 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     g = lo;
     for (int c = 0; c < ncharts; c++) {
         const chart_info *ci = &P.ch[c];
-        if (xf) {
-            if (ci->f_end > ci->f_begin) xf[c] = chart_transform(ci, &best_pl[c], g, o.resolution);
-            else { xf[c].scale = 1; xf[c].angle = 0; xf[c].tx = 0; xf[c].ty = 0; }
+        if (ci->f_end == ci->f_begin) {
+            if (xf) { xf[c].scale = 1; xf[c].angle = 0; xf[c].tx = 0; xf[c].ty = 0; }
+            continue;
         }
+        int w, h;
+        double mjx, mjy;
+        chart_oriented(&P, ci, best_pl[c].j, g, q, &w, &h, &mjx, &mjy);
+        if (xf) xf[c] = chart_transform(&P, ci, &best_pl[c], g, mjx, mjy);
         for (int v = ci->v_begin; v < ci->v_end; v++)
-            chart_place_uv(ci, &best_pl[c], g, o.resolution, P.L + 2 * (size_t)v, uv_new + 2 * (size_t)v);
+            chart_place_uv(&best_pl[c], o.resolution, q + 2 * (size_t)(v - ci->v_begin), uv_new + 2 * (size_t)v);
     }
     st = mesh_set_uv(m, nuv_new, uv_new, new_tri_uv);
     if (st != NEUV_OK) goto done;
@@ -434,6 +537,6 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     }
 done:
     pack_ctx_free(&P);
-    free(new_tri_uv); free(old_of_new); free(pl); free(best_pl); free(uv_new);
+    free(new_tri_uv); free(old_of_new); free(pl); free(best_pl); free(uv_new); free(q);
     return st;
 }
