@@ -22,6 +22,7 @@
 #include "charts/charts.h"
 #include "core/timer.h"
 #include "flatten/lscm.h"
+#include "flatten/uv_refine.h"
 #include "geometry/operator_cache.h"
 #include "geometry/operators.h"
 #include "models/patchnet.h"
@@ -197,6 +198,7 @@ static int lscm_charts(const neuv_mesh *m, const int *chart, int nc, double *cor
 
 static const float *g_feat; /* pipeline features (NULL: feature-free ψ) */
 static int g_dim;
+static uv_refine_options g_refine; /* iters 0: no vertex refinement */
 
 static void print_row(const char *name, double sec, int iters, int nc, const chart_tally *t, const uv_metrics *raw,
                       const uv_metrics *fin, const param_net_report *rep)
@@ -224,11 +226,19 @@ static int run(const neuv_mesh *m, const int *chart, int nc, const char *name, c
         fprintf(stderr, "%s: %s\n", name, neuv_last_error());
         return 1;
     }
-    double t = now_seconds() - t0;
     uv_metrics raw, fin;
     chart_tally tally;
-    if (corner_metrics(m, uv, &raw) || check_and_repair(m, chart, nc, uv, &tally) || corner_metrics(m, uv, &fin))
+    if (corner_metrics(m, uv, &raw)) return 1;
+    uv_refine_report rr;
+    if (uv_refine(m, chart, nc, &g_refine, uv, &rr) != NEUV_OK) {
+        fprintf(stderr, "%s: %s\n", name, neuv_last_error());
         return 1;
+    }
+    if (g_refine.iters > 0)
+        fprintf(stderr, "  %s: refinement %d steps, %d charts reverted, loss %.5f -> %.5f, %.2fs\n", name, rr.iters,
+                rr.charts_reverted, rr.loss_start, rr.loss_end, rr.seconds);
+    double t = now_seconds() - t0;
+    if (check_and_repair(m, chart, nc, uv, &tally) || corner_metrics(m, uv, &fin)) return 1;
     print_row(name, t, rep.iters, nc, &tally, &raw, &fin, &rep);
     free(uv);
     return 0;
@@ -260,6 +270,12 @@ static void apply_key(param_net_options *o, const char *kv)
     else if (KEY("fold")) o->lambda_fold = v;
     else if (KEY("lr_final")) o->lr_final = v;
     else if (KEY("fold_eps")) o->fold_eps = v;
+    else if (KEY("refine")) g_refine.iters = (int)v;
+    else if (KEY("refine_lr")) g_refine.lr = v;
+    else if (KEY("refine_iso")) g_refine.lambda_iso = v;
+    else if (KEY("refine_angle")) g_refine.lambda_angle = v;
+    else if (KEY("refine_area")) g_refine.lambda_area = v;
+    else if (KEY("refine_fold")) g_refine.lambda_fold = v;
     else if (KEY("psi")) o->psi_mode = !strcmp(eq + 1, "vertex") ? PARAM_PSI_PER_VERTEX : PARAM_PSI_POOLED;
     else fprintf(stderr, "unknown key %s\n", kv);
 #undef KEY
@@ -272,6 +288,8 @@ int main(int argc, char **argv)
     int k = atoi(charts_arg);
     int threads = argc > 3 ? atoi(argv[3]) : 1;
     nn_set_threads(threads);
+    uv_refine_default_options(&g_refine);
+    g_refine.iters = 0;
     neuv_mesh *m = NULL;
     if (!strcmp(path, "grid")) m = shape_grid(16, 16, 1.0, 1.0, 0); /* tuning shapes, one chart each (K = 1) */
     else if (!strcmp(path, "cap")) m = test_cap();

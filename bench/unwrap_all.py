@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """bench/unwrap: `neuv unwrap` over every mesh in ../shared/meshes.
 
-For each mesh and each configuration (neural fast, neural paper, lscm and
+For each mesh and each configuration (neural fast, neural fast without the
+vertex refinement, neural paper, lscm and
 harmonic on the same charts: the seed is the same, so PatchNet gives the
 same charts), runs the CLI with --report and tabulates seconds per stage,
 charts, qce_mean, ase_abs_mean, flipped, overlap_fraction and
@@ -16,6 +17,7 @@ import argparse, json, os, subprocess, sys, tempfile, time
 CONFIGS = {
     "neural-fast": ["--method", "neural", "--preset", "fast"],
     "neural-paper": ["--method", "neural", "--preset", "paper"],
+    "neural-norefine": ["--method", "neural", "--preset", "fast", "--refine", "0"],
     "lscm": ["--method", "lscm"],
     "harmonic": ["--method", "harmonic"],
 }
@@ -34,9 +36,9 @@ def main():
     meshes = a.meshes.split(",") if a.meshes else sorted(
         f for f in os.listdir(mesh_dir) if f.endswith((".obj", ".off", ".ply")))
     out = tempfile.mkdtemp(prefix="neuv-bench-")
-    print("| mesh | config | faces | charts | qce_mean | ase_abs_mean | flipped | overlap | packing | "
+    print("| mesh | config | faces | charts | neural charts | qce_mean | ase_abs_mean | flipped | overlap | packing | "
           "operators s | patches s | param s | pack s | total s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for mesh in meshes:
         for cfg in a.configs.split(","):
             rep = os.path.join(out, f"{mesh}-{cfg}.json")
@@ -55,7 +57,7 @@ def main():
                 continue
             r = json.load(open(rep))
             m, s = r["metrics"], r["seconds"]
-            print(f"| {mesh} | {cfg} | {r['faces']} | {r['charts']} | {m['qce_mean']:.4f} | {m['ase_abs_mean']:.3f} | "
+            print(f"| {mesh} | {cfg} | {r['faces']} | {r['charts']} | {r['param']['neural_charts']} | {m['qce_mean']:.4f} | {m['ase_abs_mean']:.3f} | "
                   f"{m['flipped']} | {m['overlap_fraction']:.3g} | {m['packing_efficiency']:.3f} | "
                   f"{s['operators']:.1f} | {s['patches']:.1f} | {s['param']:.1f} | {s['pack']:.1f} | {s['total']:.1f} |")
             sys.stdout.flush()

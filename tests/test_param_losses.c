@@ -14,7 +14,7 @@ typedef nn_tensor *(*loss_fn)(nn_ctx *ctx, nn_tensor *uv, void *user);
 typedef struct fixture {
     const neuv_mesh *m;
     param_corners c;
-    float *cos3d, *area3d, *orient, *g, *x3;
+    float *cos3d, *area3d, *orient, *g, *x3, *frame_inv, *weight;
     int *pi, *pj, np;
 } fixture;
 
@@ -39,6 +39,12 @@ static nn_tensor *f_fold(nn_ctx *ctx, nn_tensor *uv, void *u)
     fixture *f = u;
     return param_loss_fold_barrier(ctx, uv, &f->c, nn_from(ctx, f->c.nf, 1, f->area3d),
                                    nn_from(ctx, f->c.nf, 1, f->orient), 0.05f);
+}
+static nn_tensor *f_conf(nn_ctx *ctx, nn_tensor *uv, void *u)
+{
+    fixture *f = u;
+    return param_loss_conformal(ctx, uv, &f->c, nn_from(ctx, f->c.nf, 4, f->frame_inv),
+                                nn_from(ctx, f->c.nf, 1, f->weight), nn_from(ctx, f->c.nf, 1, f->orient));
 }
 /* L_cycle with the "reconstruction" a fixed smooth function of uv (uv, uv0 uv1), so that
  * the gradient reaches uv through both of x_rec's columns. */
@@ -101,6 +107,12 @@ int main(void)
     f.orient = malloc(sizeof(float) * nf);
     f.x3 = malloc(sizeof(float) * 3 * nv);
     param_corner_targets(m->pos, &f.c, f.cos3d, f.area3d);
+    f.frame_inv = malloc(sizeof(float) * 4 * nf);
+    f.weight = malloc(sizeof(float) * nf);
+    param_conformal_targets(m->pos, &f.c, f.frame_inv, f.weight);
+    double wsum = 0;
+    for (int i = 0; i < nf; i++) wsum += f.weight[i];
+    CHECK_NEAR(wsum, 1, 1e-6);
     double asum = 0;
     for (int i = 0; i < nf; i++) { asum += f.area3d[i]; f.orient[i] = 1; }
     CHECK_NEAR(asum, 0.48, 1e-6);
@@ -129,6 +141,35 @@ int main(void)
     CHECK_NEAR(f_angle(ctx, t, &f)->data[0], 0, 1e-10);
     CHECK_NEAR(f_area(ctx, t, &f)->data[0], 0, 1e-14);
     CHECK_NEAR(f_fold(ctx, t, &f)->data[0], 0, 1e-14);
+    CHECK_NEAR(f_conf(ctx, t, &f)->data[0], 0, 1e-5);
+    /* u = 2x, v = y: every face has singular values 2 and 1, so s1/s2 + s2/s1 − 2 = 0.5. */
+    {
+        float *st = malloc(sizeof(float) * 2 * nv);
+        for (int v = 0; v < nv; v++) { st[2 * v] = 2 * uv[2 * v]; st[2 * v + 1] = uv[2 * v + 1]; }
+        CHECK_NEAR(f_conf(ctx, nn_from(ctx, nv, 2, st), &f)->data[0], 0.5, 1e-5);
+        /* a rotation by 90 degrees and a uniform scaling are conformal */
+        for (int v = 0; v < nv; v++) { st[2 * v] = -3 * uv[2 * v + 1]; st[2 * v + 1] = 3 * uv[2 * v]; }
+        CHECK_NEAR(f_conf(ctx, nn_from(ctx, nv, 2, st), &f)->data[0], 0, 1e-5);
+        free(st);
+    }
+    /* A triangle standing in the yz plane: its own plane frame, not the xy projection. */
+    {
+        int tri[3] = {0, 1, 2};
+        param_corners c1;
+        CHECK_INT(param_corners_build(tri, 1, &c1), NEUV_OK);
+        double p3[9] = {0, 0, 0, 0, 1, 0, 0, 0, 1};
+        float B[4], w[1], one[1] = {1};
+        param_conformal_targets(p3, &c1, B, w);
+        CHECK_NEAR(w[0], 1, 1e-7);
+        float q[6] = {0, 0, 1, 0, 0, 1}, q2[6] = {0, 0, 2, 0, 0, 1};
+        nn_tensor *l = param_loss_conformal(ctx, nn_from(ctx, 3, 2, q), &c1, nn_from(ctx, 1, 4, B), nn_from(ctx, 1, 1, w),
+                                            nn_from(ctx, 1, 1, one));
+        CHECK_NEAR(l->data[0], 0, 1e-6);
+        l = param_loss_conformal(ctx, nn_from(ctx, 3, 2, q2), &c1, nn_from(ctx, 1, 4, B), nn_from(ctx, 1, 1, w),
+                                 nn_from(ctx, 1, 1, one));
+        CHECK_NEAR(l->data[0], 0.5, 1e-6);
+        param_corners_free(&c1);
+    }
     /* x_rec = (u, v, u v) against x = (x, y, 0): L_cycle = mean (x y)². */
     double cyc = 0;
     for (int v = 0; v < nv; v++) cyc += pow(m->pos[3 * v] * m->pos[3 * v + 1], 2);
@@ -193,6 +234,7 @@ int main(void)
     rng r;
     rng_seed(&r, 3);
     for (int i = 0; i < 2 * nv; i++) uv2[i] = uv[i] + (float)(0.1 * (rng_uniform(&r) - 0.5));
+    CHECK(gradcheck("L_conf", f_conf, &f, uv2, nv) <= 1);
     for (int i = 0; i < nf; i++) f.orient[i] = i % 3 ? 1.0f : -1.0f;
     CHECK(gradcheck("L_iso", f_iso, &f, uv2, nv) <= 1);
     CHECK(gradcheck("L_angle", f_angle, &f, uv2, nv) <= 1);
@@ -201,7 +243,7 @@ int main(void)
     /* Faces with orientation −1 are folded against it (barrier active), the others not. */
     CHECK(gradcheck("L_fold", f_fold, &f, uv2, nv) <= 1);
 
-    free(uv); free(uv2); free(f.cos3d); free(f.area3d); free(f.orient); free(f.x3);
+    free(uv); free(uv2); free(f.cos3d); free(f.area3d); free(f.orient); free(f.x3); free(f.frame_inv); free(f.weight);
     free(f.pi); free(f.pj); free(f.g);
     param_corners_free(&f.c);
     mesh_free(m);

@@ -91,6 +91,7 @@ typedef struct neuv_unwrap_options {
     int charts;              /* 0: automatic; K: exactly K patches before disk cutting */
     double max_distortion;   /* auto charts: split until every chart's LSCM qce_mean is below (1.15) */
     int iters;               /* 0: preset default; otherwise training iterations per network */
+    int refine;              /* neural: vertex refinement steps after the networks (400); 0: off */
     unsigned long long seed; /* every random choice derives from it (default 1) */
     int threads;             /* 0: library default */
     int resolution;          /* atlas side in pixels (1024) */

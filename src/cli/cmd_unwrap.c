@@ -12,7 +12,7 @@
 static const char *usage_text =
     "usage: neuv unwrap IN [-o OUT] [--report R.json] [--preview PREFIX] [--preview-color chart|qce|area]\n"
     "                   [--method neural|lscm|harmonic] [--charts auto|K] [--max-distortion X]\n"
-    "                   [--preset fast|paper] [--iters N] [--seed S] [--threads T]\n"
+    "                   [--preset fast|paper] [--iters N] [--refine N] [--seed S] [--threads T]\n"
     "                   [--resolution PX] [--padding PX] [--allow-overlaps] [--no-cache] [--quiet]\n"
     "                   [--save-model M.neuv] [--model M.neuv [--finetune N] [--check-inference]]\n"
     "                   [--train-faces N]\n";
@@ -49,7 +49,7 @@ int cmd_unwrap(int argc, char **argv)
     neuv_unwrap_options_default(&o);
     unwrap_job job = {0};
     const char *in = NULL, *method = NULL, *charts = NULL, *preset = NULL, *color = NULL;
-    int seed = -1, bad = 0, finetune = 0;
+    int seed = -1, bad = 0, finetune = 0, refine = -1;
     job.train_faces = DEFAULT_TRAIN_FACES;
     for (int i = 1; i < argc && !bad; i++) {
         if (cli_arg_global(argc, argv, &i, &bad)) continue;
@@ -62,6 +62,7 @@ int cmd_unwrap(int argc, char **argv)
         if (cli_arg_str(argc, argv, &i, "--preset", &preset, &bad)) continue;
         if (cli_arg_double(argc, argv, &i, "--max-distortion", &o.max_distortion, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--iters", &o.iters, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--refine", &refine, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--seed", &seed, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--resolution", &o.resolution, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--padding", &o.padding, &bad)) continue;
@@ -98,6 +99,13 @@ int cmd_unwrap(int argc, char **argv)
     }
     if (o.max_distortion < 1.0) return cli_error(NULL, "--max-distortion must be at least 1");
     if (o.iters < 0) return cli_error(NULL, "--iters must be positive");
+    if (refine < -1 || refine > 1000000) return cli_error(NULL, "--refine must be 0 (off) or a step count up to 1000000");
+    if (refine >= 0) o.refine = refine;
+    /* A saved model keeps the networks' map, which is the same on every
+     * triangulation; the vertex refinement is tied to this mesh's triangles
+     * (it moved transferred UVs ~0.006 of the atlas side in cli_model), so
+     * it is off unless asked for. */
+    else if (job.save_model) o.refine = 0;
     if (seed >= 0) o.seed = (unsigned long long)seed;
     else if (seed != -1) return cli_error(NULL, "--seed must be non-negative");
     o.threads = cli_opts.threads;
@@ -109,8 +117,8 @@ int cmd_unwrap(int argc, char **argv)
         return cli_error(job.model, "--finetune is not available yet: models are applied by inference only "
                                     "(use --finetune 0 or leave it out)");
     if (!job.model && job.check_inference) return cli_error(NULL, "--check-inference needs --model");
-    if (job.model && (method || preset || charts || o.iters || seed >= 0))
-        return cli_error(job.model, "--model applies a saved model: --method, --preset, --charts, --iters and --seed "
+    if (job.model && (method || preset || charts || o.iters || seed >= 0 || refine >= 0))
+        return cli_error(job.model, "--model applies a saved model: --method, --preset, --charts, --iters, --refine and --seed "
                                     "come from the model");
     if (color && parse_preview_color(color, &job.preview_color)) return 2;
 

@@ -105,3 +105,49 @@ nn_tensor *param_loss_fold_barrier(nn_ctx *ctx, nn_tensor *uv, const param_corne
     nn_tensor *short_by = nn_relu(ctx, nn_add_const(ctx, nn_scale(ctx, ratio, -1.0f), eps));
     return nn_mean(ctx, nn_square(ctx, short_by), NN_ALL);
 }
+
+void param_conformal_targets(const double *pos, const param_corners *c, float *frame_inv, float *weight)
+{
+    int nf = c->nf;
+    double total = 0;
+    for (int f = 0; f < nf; f++) {
+        const double *a = pos + 3 * c->p0[f], *b = pos + 3 * c->p1[f], *d = pos + 3 * c->p2[f];
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++) { e1[k] = b[k] - a[k]; e2[k] = d[k] - a[k]; }
+        double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+        double x2 = l1 > 0 ? (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1 : 0;
+        double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
+        double y2 = l1 > 0 ? sqrt(cx * cx + cy * cy + cz * cz) / l1 : 0;
+        /* P = [[l1, x2], [0, y2]]; P^-1 = [[1/l1, -x2/(l1 y2)], [0, 1/y2]] */
+        float *B = frame_inv + 4 * (size_t)f;
+        double det = l1 * y2;
+        if (det > 0) {
+            B[0] = (float)(1 / l1); B[1] = (float)(-x2 / det); B[2] = 0; B[3] = (float)(1 / y2);
+        } else {
+            B[0] = B[1] = B[2] = B[3] = 0;
+        }
+        weight[f] = (float)(0.5 * det);
+        total += 0.5 * det;
+    }
+    for (int f = 0; f < nf; f++) weight[f] = total > 0 ? (float)(weight[f] / total) : 0;
+}
+
+nn_tensor *param_loss_conformal(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, nn_tensor *frame_inv,
+                                nn_tensor *weight, nn_tensor *orient)
+{
+    int nf = c->nf;
+    nn_tensor *a = nn_gather_rows(ctx, uv, c->p0, nf);
+    nn_tensor *e1 = nn_sub(ctx, nn_gather_rows(ctx, uv, c->p1, nf), a);
+    nn_tensor *e2 = nn_sub(ctx, nn_gather_rows(ctx, uv, c->p2, nf), a);
+    /* columns of J: J e_x = e1 B00 + e2 B10, J e_y = e1 B01 + e2 B11 (each #F by 2) */
+    nn_tensor *jx = nn_add(ctx, nn_mul(ctx, e1, nn_slice_cols(ctx, frame_inv, 0, 1)),
+                           nn_mul(ctx, e2, nn_slice_cols(ctx, frame_inv, 2, 1)));
+    nn_tensor *jy = nn_add(ctx, nn_mul(ctx, e1, nn_slice_cols(ctx, frame_inv, 1, 1)),
+                           nn_mul(ctx, e2, nn_slice_cols(ctx, frame_inv, 3, 1)));
+    nn_tensor *frob = nn_add(ctx, nn_sum(ctx, nn_square(ctx, jx), NN_COLS), nn_sum(ctx, nn_square(ctx, jy), NN_COLS));
+    nn_tensor *det = nn_sub(ctx, nn_mul(ctx, nn_slice_cols(ctx, jx, 0, 1), nn_slice_cols(ctx, jy, 1, 1)),
+                            nn_mul(ctx, nn_slice_cols(ctx, jx, 1, 1), nn_slice_cols(ctx, jy, 0, 1)));
+    det = nn_clamp_min(ctx, nn_mul(ctx, det, orient), 1e-6f);
+    nn_tensor *energy = nn_mul(ctx, nn_add_const(ctx, nn_div(ctx, frob, det), -2.0f), weight);
+    return nn_sum(ctx, energy, NN_ALL);
+}

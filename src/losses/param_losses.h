@@ -68,6 +68,27 @@ nn_tensor *param_loss_area(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, n
 nn_tensor *param_loss_fold_barrier(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, nn_tensor *area3d,
                                    nn_tensor *orient, float eps);
 
+/* Conformal energy (a neuv extension, used by the vertex refinement,
+ * flatten/uv_refine.h): per face the Jacobian J of the affine map from the 3D
+ * triangle (isometrically laid in its plane) to its UV triangle, and
+ *   L_conf = Σ_f w_f (‖J‖_F² / max(orient_f det J, δ_f) − 2)
+ * with w_f the face's share of the 3D area. ‖J‖²/det J = s1/s2 + s2/s1 for
+ * singular values s1 ≥ s2, so this is the symmetric form of the quasi-
+ * conformal error qce = s1/s2 of SPEC.md section 5 (0 for a conformal map).
+ * δ_f = 1e-6 (in the units of det J, i.e. UV area / 3D area) only keeps a
+ * folded face finite: the fold barrier keeps faces away from it.
+ * Inputs: uv #V by 2, c corners, frame_inv #F by 4 (param_conformal_targets),
+ * weight #F by 1, orient #F by 1 constants. Output: 1 by 1. */
+nn_tensor *param_loss_conformal(nn_ctx *ctx, nn_tensor *uv, const param_corners *c, nn_tensor *frame_inv,
+                                nn_tensor *weight, nn_tensor *orient);
+
+/* Targets of L_conf: per face the inverse of the 2x2 matrix whose columns are
+ * the edges p1 − p0 and p2 − p0 laid isometrically in the plane (row-major
+ * B00 B01 B10 B11, so J = [u1 − u0, u2 − u0] B), and the face's share of the
+ * total 3D area. A face of zero 3D area gets B = 0 and weight 0.
+ * Inputs: pos #V by 3, c corners. Outputs: frame_inv #F by 4, weight #F. */
+void param_conformal_targets(const double *pos, const param_corners *c, float *frame_inv, float *weight);
+
 /* Signed UV area of each face (#F by 1), the quantity L_area compares. */
 nn_tensor *param_face_area_uv(nn_ctx *ctx, nn_tensor *uv, const param_corners *c);
 

@@ -14,6 +14,7 @@
 #include "core/union_find.h"
 #include "flatten/harmonic.h"
 #include "flatten/lscm.h"
+#include "flatten/uv_refine.h"
 #include "geometry/operator_cache.h"
 #include "mesh/edge_map.h"
 #include "metrics/uv_overlap.h"
@@ -567,6 +568,12 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             s = param_net_apply(md->param, net, p->sub->pos, n, p->uv);
             if (md->chart_mirrored[mc]) /* as the source's check did before packing */
                 for (int v = 0; v < n; v++) p->uv[2 * v] = -p->uv[2 * v];
+            if (s == NEUV_OK && md->refine > 0) { /* as the source's atlas was refined, where the map is usable */
+                chart_uv_check chk0;
+                int ok0 = uv_usable(p, p->uv, scratch, &chk0);
+                if (ok0 < 0) s = neuv_fail_nomem("chart check");
+                else if (ok0) s = unwrap_refine_piece(p, md->refine, NULL);
+            }
         } else {
             s = transfer_chart_uvs(md, mc, p);
         }
@@ -669,6 +676,7 @@ static void opts_from_model(neuv_unwrap_options *opts, const unwrap_model *md)
     opts->method = md->method;
     opts->preset = md->preset;
     opts->seed = md->seed;
+    opts->refine = md->refine;
     opts->resolution = md->resolution;
     opts->padding = md->padding;
 }

@@ -31,7 +31,10 @@ struct neuv_unwrap_result {
     double patch_iters_per_second;
     int param_iterations;
     double param_loss;
-    int neural_charts;        /* charts whose final map is the network's */
+    int neural_charts;        /* charts whose final map is the network's (refined or not) */
+    int refine_steps;         /* vertex refinement steps taken (flatten/uv_refine.h) */
+    double refine_seconds;
+    int refine_stopped;       /* charts whose refinement stopped early at the last injective map */
     atlas_chart_transform *transforms; /* n_charts */
     atlas_pack_result pack;
     unwrap_repair *repairs;
@@ -83,6 +86,11 @@ typedef struct chart_piece {
 void unwrap_piece_clear(chart_piece *p);
 /* Builds chart `id` of m as a piece with zeroed UVs (keeps from_split). */
 neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p);
+/* Vertex refinement (flatten/uv_refine.h) of a piece whose UVs pass the
+ * injectivity check, counter-clockwise: `steps` Adam steps, checked every 50;
+ * the piece keeps its last map that passes. Returns NEUV_OK or NEUV_ERR_NOMEM. */
+struct uv_refine_report;
+neuv_status unwrap_refine_piece(chart_piece *p, int steps, struct uv_refine_report *rep);
 /* Per-corner UVs of the whole mesh from the charts' per-vertex UVs: a mesh
  * vertex gets one UV per chart it belongs to (split at seams). */
 neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_charts);

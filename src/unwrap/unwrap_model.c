@@ -43,6 +43,7 @@ neuv_status unwrap_model_from_result(struct neuv_unwrap_result *r, unwrap_model 
     m->method = r->opts.method;
     m->preset = r->opts.preset;
     m->seed = r->opts.seed;
+    m->refine = r->opts.method == NEUV_METHOD_NEURAL ? r->opts.refine : 0;
     m->resolution = r->opts.resolution;
     m->padding = r->opts.padding;
     m->n_charts = r->n_charts;
@@ -150,6 +151,7 @@ static char *header_json(const unwrap_model *m)
     json_key(&w, "method"); json_string(&w, method_key(m->method));
     json_key(&w, "preset"); json_string(&w, m->preset == NEUV_PRESET_PAPER ? "paper" : "fast");
     json_key(&w, "seed"); json_int(&w, (long long)m->seed);
+    json_key(&w, "refine"); json_int(&w, m->refine);
     json_key(&w, "resolution"); json_int(&w, m->resolution);
     json_key(&w, "padding"); json_int(&w, m->padding);
     json_key(&w, "charts"); json_int(&w, m->n_charts);
@@ -445,6 +447,9 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
         (s = want_tensor(c, "source.uv", (int)nuv, 4, &t)) || (s = want_tensor(c, "charts.map", (int)nc, 2, &t)))
         return s;
     m->seed = (uint64_t)seed;
+    long long refine = 0; /* written since the vertex refinement exists; older models have none */
+    if (header_value(h, "refine") && (s = header_int(h, "refine", 0, 1000000, &refine))) return s;
+    m->refine = (int)refine;
     m->resolution = (int)res;
     m->padding = (int)pad;
     m->n_charts = (int)nc;

@@ -42,6 +42,7 @@ typedef struct unwrap_model {
     neuv_preset preset;
     uint64_t seed;
     int resolution, padding;
+    int refine;                  /* vertex refinement steps after the network (0: none; absent in older files) */
     neuv_mesh *source;           /* cleaned source: positions, faces, packed per-corner UVs */
     int n_charts;
     int *face_chart;             /* #F of source */

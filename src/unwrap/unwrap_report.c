@@ -78,6 +78,9 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "iterations"); json_int(&w, r->param_iterations);
     json_key(&w, "final_loss"); json_number(&w, r->param_loss);
     json_key(&w, "neural_charts"); json_int(&w, r->neural_charts);
+    json_key(&w, "refine_steps"); json_int(&w, r->refine_steps);
+    json_key(&w, "refine_seconds"); json_number(&w, r->refine_seconds);
+    json_key(&w, "refine_stopped_charts"); json_int(&w, r->refine_stopped);
     json_end_object(&w);
 
     json_key(&w, "pack");
