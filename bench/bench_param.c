@@ -274,6 +274,7 @@ static void apply_key(param_net_options *o, const char *kv)
     else if (KEY("refine_lr")) g_refine.lr = v;
     else if (KEY("refine_iso")) g_refine.lambda_iso = v;
     else if (KEY("refine_angle")) g_refine.lambda_angle = v;
+    else if (KEY("refine_conf")) g_refine.lambda_conformal = v;
     else if (KEY("refine_area")) g_refine.lambda_area = v;
     else if (KEY("refine_fold")) g_refine.lambda_fold = v;
     else if (KEY("psi")) o->psi_mode = !strcmp(eq + 1, "vertex") ? PARAM_PSI_PER_VERTEX : PARAM_PSI_POOLED;

@@ -11,7 +11,7 @@
 
 static const double half_pi = 1.57079632679489661923;
 /* Finest extra turn: a placement index j < pack_turns_max is the turn j * (pi/2) / pack_turns_max. */
-enum { pack_turns_max = 4 };
+enum { pack_turns_max = 8 };
 
 /* One chart as the packer sees it: its faces and UVs (ranges into the
  * packer's own arrays) and its shape after density scaling and turning to
@@ -72,7 +72,7 @@ enum { choose_lowest_top, choose_lowest_bottom };
 /* turns: extra turns j * (pi/2) / turns tried per quarter turn (plus the
  * turn of the chart's smallest bounding square). */
 typedef struct pack_heuristic { int order, choose, turns; } pack_heuristic;
-#define PACK_HEURISTICS 7
+#define PACK_HEURISTICS 10
 static const pack_heuristic heuristics[PACK_HEURISTICS] = {
     {order_perimeter, choose_lowest_bottom, 1},
     {order_short_side, choose_lowest_top, 1},
@@ -81,6 +81,9 @@ static const pack_heuristic heuristics[PACK_HEURISTICS] = {
     {order_perimeter, choose_lowest_bottom, 4},
     {order_rect_area, choose_lowest_top, 4},
     {order_long_side, choose_lowest_top, 4},
+    {order_perimeter, choose_lowest_bottom, 8},
+    {order_rect_area, choose_lowest_top, 8},
+    {order_long_side, choose_lowest_top, 8},
 };
 
 typedef struct chart_order { double key; int id; } chart_order;
@@ -492,7 +495,7 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
         } else {
             hi = g;
         }
-        if (lo > 0 && hi / lo < 1.003) break;
+        if (lo > 0 && hi / lo < 1.001) break;
         /* Scale steps, not tries: a failing step costs one try per heuristic. */
         if (++steps >= 30) break;
         if (lo > 0) g = sqrt(lo * hi);
