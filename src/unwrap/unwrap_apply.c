@@ -368,13 +368,19 @@ static void span_bounds(const neuv_mesh *m, chart_span *sp)
         }
 }
 
-/* Overlapped pixel centres of two charts drawn together. */
-static neuv_status pair_overlap(const neuv_mesh *m, const int *face_chart, int a, int b, unsigned char *mask,
+/* Overlapped pixel centres of two charts drawn together. Faces are listed by
+ * chart (order, first: n_charts + 1), so a pair costs its own faces only. */
+static neuv_status pair_overlap(const neuv_mesh *m, const int *order, const int *first, int a, int b, int *tri,
                                 long long *out)
 {
-    for (int f = 0; f < m->nf; f++) mask[f] = face_chart[f] == a || face_chart[f] == b;
+    int n = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        int c = pass ? b : a;
+        for (int k = first[c]; k < first[c + 1]; k++, n++)
+            memcpy(tri + 3 * (size_t)n, m->tri_uv + 3 * (size_t)order[k], 3 * sizeof(int));
+    }
     uv_coverage cov;
-    neuv_status s = uv_coverage_count(m->uv, m->nf, m->tri_uv, mask, OVERLAP_RESOLUTION, &cov);
+    neuv_status s = uv_coverage_count(m->uv, n, tri, NULL, OVERLAP_RESOLUTION, &cov);
     *out = cov.overlapped;
     return s;
 }
@@ -384,9 +390,18 @@ static neuv_status pair_overlap(const neuv_mesh *m, const int *face_chart, int a
 static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *span)
 {
     neuv_mesh *m = r->mesh;
-    unsigned char *mask = malloc((size_t)m->nf);
+    int *tri = malloc(sizeof(int) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
+    int *order = malloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
+    int *first = calloc((size_t)r->n_charts + 1, sizeof(int));
     int *shrunk = calloc((size_t)r->n_charts, sizeof(int));
-    if (!mask || !shrunk) { free(mask); free(shrunk); return neuv_fail_nomem("overlap test"); }
+    if (!tri || !order || !first || !shrunk) {
+        free(tri); free(order); free(first); free(shrunk);
+        return neuv_fail_nomem("overlap test");
+    }
+    for (int f = 0; f < m->nf; f++) first[r->face_chart[f] + 1]++;
+    for (int c = 0; c < r->n_charts; c++) first[c + 1] += first[c];
+    for (int f = 0, *fill = shrunk; f < m->nf; f++) order[first[r->face_chart[f]] + fill[r->face_chart[f]]++] = f;
+    memset(shrunk, 0, sizeof(int) * (size_t)r->n_charts);
     neuv_status s = NEUV_OK;
     for (int round = 0; round < MAX_SHRINK_ROUNDS; round++) {
         uv_coverage cov;
@@ -400,7 +415,7 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
                 if (A->hi[0] < B->lo[0] || B->hi[0] < A->lo[0] || A->hi[1] < B->lo[1] || B->hi[1] < A->lo[1])
                     continue;
                 long long ov;
-                if ((s = pair_overlap(m, r->face_chart, a, b, mask, &ov))) break;
+                if ((s = pair_overlap(m, order, first, a, b, tri, &ov))) break;
                 if (ov == 0) continue;
                 /* The repaired chart moves; else the smaller one. */
                 int pick = A->repaired != B->repaired ? (A->repaired ? a : b)
@@ -426,7 +441,7 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
         if (shrunk[c])
             unwrap_add_repair(r, c, "overlapped a neighbour in the atlas; shrunk to %.3f of its size about its centroid",
                               pow(0.92, shrunk[c]));
-    free(mask);
+    free(tri); free(order); free(first);
     free(shrunk);
     return s;
 }
