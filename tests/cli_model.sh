@@ -71,6 +71,7 @@ expect_2 "wrong version" "$NEUV" unwrap "$IN" --model "$TMP/ver.neuv" -o "$TMP/x
 expect_2 "missing model" "$NEUV" unwrap "$IN" --model "$TMP/none.neuv" -o "$TMP/x.obj"
 expect_2 "finetune" "$NEUV" unwrap "$IN" --model "$TMP/m.neuv" --finetune 5 -o "$TMP/x.obj"
 expect_2 "method with model" "$NEUV" unwrap "$IN" --model "$TMP/m.neuv" --method lscm -o "$TMP/x.obj"
+expect_2 "refine with model" "$NEUV" unwrap "$IN" --model "$TMP/m.neuv" --refine 100 -o "$TMP/x.obj"
 [ ! -e "$TMP/x.obj" ] && ok || bad "a failed unwrap left $TMP/x.obj"
 
 echo "cli_model: $pass passed, $fail failed"

@@ -70,6 +70,8 @@ expect_2() { # label, then the command
 expect_2 "unknown method" "$NEUV" unwrap "$IN" -o "$TMP/x.obj" --method magic
 expect_2 "bad charts" "$NEUV" unwrap "$IN" -o "$TMP/x.obj" --charts zero
 expect_2 "bad preset" "$NEUV" unwrap "$IN" -o "$TMP/x.obj" --preset slow
+expect_2 "negative refine" "$NEUV" unwrap "$IN" -o "$TMP/x.obj" --refine -3
+expect_2 "refine not a number" "$NEUV" unwrap "$IN" -o "$TMP/x.obj" --refine many
 expect_2 "missing input" "$NEUV" unwrap "$TMP/nope.obj" -o "$TMP/x.obj"
 expect_2 "missing folder" "$NEUV" unwrap "$IN" -o "$TMP/no/such/dir/x.obj" --method lscm
 expect_2 "overwrite input" "$NEUV" unwrap "$IN" -o "$IN"

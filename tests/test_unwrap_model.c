@@ -67,12 +67,15 @@ int main(void)
     char path1[512], path2[512];
     snprintf(path1, sizeof path1, "%s", p1);
     snprintf(path2, sizeof path2, "%s", p2);
+    CHECK_INT(model->refine, 0); /* classic maps are not refined */
+    model->refine = 123;         /* the field round-trips (only network charts use it) */
     CHECK_INT(unwrap_model_save(model, path1), NEUV_OK);
     unwrap_model *back = NULL;
     CHECK_INT(unwrap_model_load(path1, &back), NEUV_OK);
     CHECK(back != NULL);
     if (back) {
         CHECK_INT(back->n_charts, model->n_charts);
+        CHECK_INT(back->refine, 123);
         CHECK_INT(back->source->nv, model->source->nv);
         CHECK(memcmp(back->source->pos, model->source->pos, sizeof(double) * 3 * (size_t)model->source->nv) == 0);
         CHECK(memcmp(back->source->uv, model->source->uv, sizeof(double) * 2 * (size_t)model->source->nuv) == 0);
