@@ -371,7 +371,7 @@ static void span_bounds(const neuv_mesh *m, chart_span *sp)
 /* Overlapped pixel centres of two charts drawn together. Faces are listed by
  * chart (order, first: n_charts + 1), so a pair costs its own faces only. */
 static neuv_status pair_overlap(const neuv_mesh *m, const int *order, const int *first, int a, int b, int *tri,
-                                long long *out)
+                                int resolution, long long *out)
 {
     int n = 0;
     for (int pass = 0; pass < 2; pass++) {
@@ -380,7 +380,7 @@ static neuv_status pair_overlap(const neuv_mesh *m, const int *order, const int 
             memcpy(tri + 3 * (size_t)n, m->tri_uv + 3 * (size_t)order[k], 3 * sizeof(int));
     }
     uv_coverage cov;
-    neuv_status s = uv_coverage_count(m->uv, n, tri, NULL, OVERLAP_RESOLUTION, &cov);
+    neuv_status s = uv_coverage_count(m->uv, n, tri, NULL, resolution, &cov);
     *out = cov.overlapped;
     return s;
 }
@@ -408,14 +408,27 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
         if ((s = uv_coverage_count(m->uv, m->nf, m->tri_uv, NULL, OVERLAP_RESOLUTION, &cov))) break;
         if (cov.overlapped == 0) break;
         int acted = 0;
-        for (int c = 0; c < r->n_charts; c++) span_bounds(m, &span[c]);
+        double alo[2] = {INFINITY, INFINITY}, ahi[2] = {-INFINITY, -INFINITY};
+        for (int c = 0; c < r->n_charts; c++) {
+            span_bounds(m, &span[c]);
+            for (int q = 0; q < 2; q++) { alo[q] = fmin(alo[q], span[c].lo[q]); ahi[q] = fmax(ahi[q], span[c].hi[q]); }
+        }
+        double atlas_side = fmax(ahi[0] - alo[0], ahi[1] - alo[1]);
         for (int a = 0; a < r->n_charts && s == NEUV_OK; a++)
             for (int b = a + 1; b < r->n_charts; b++) {
                 chart_span *A = &span[a], *B = &span[b];
                 if (A->hi[0] < B->lo[0] || B->hi[0] < A->lo[0] || A->hi[1] < B->lo[1] || B->hi[1] < A->lo[1])
                     continue;
+                /* A pair is drawn at twice the atlas test's pixel density (the
+                 * raster spans the pair's box, not the atlas: a small pair
+                 * at the full resolution swept millions of empty pixels). */
+                double side = fmax(fmax(A->hi[0], B->hi[0]) - fmin(A->lo[0], B->lo[0]),
+                                   fmax(A->hi[1], B->hi[1]) - fmin(A->lo[1], B->lo[1]));
+                int res = atlas_side > 0 ? (int)ceil(2.0 * OVERLAP_RESOLUTION * side / atlas_side) : OVERLAP_RESOLUTION;
+                if (res < 64) res = 64;
+                if (res > OVERLAP_RESOLUTION) res = OVERLAP_RESOLUTION;
                 long long ov;
-                if ((s = pair_overlap(m, order, first, a, b, tri, &ov))) break;
+                if ((s = pair_overlap(m, order, first, a, b, tri, res, &ov))) break;
                 if (ov == 0) continue;
                 /* The repaired chart moves; else the smaller one. */
                 int pick = A->repaired != B->repaired ? (A->repaired ? a : b)
