@@ -129,25 +129,94 @@ static void chart_oriented(const pack_ctx *P, const chart_info *c, int j, double
     *h = (int)floor(hi[1] - lo[1] + 1e-7) + 1;
 }
 
+/* A chart's footprint at one extra turn and the current scale, in its four
+ * quarter turns, with their spans. Every heuristic tried at a scale places
+ * the same shapes, so they are made once per scale (pack_cache). */
+typedef struct turn_shape {
+    int state;              /* 0: not made yet, 1: made, 2: does not fit the atlas at this turn */
+    int w, h;               /* pixel box before the quarter turns */
+    int have[4];            /* quarter turn k is distinct (a half turn can repeat the shape) */
+    footprint fp[4];
+    footprint_spans sp[4];
+    size_t bytes;
+} turn_shape;
+
+static void turn_shape_clear(turn_shape *t)
+{
+    for (int k = 0; k < 4; k++) { footprint_free(&t->fp[k]); footprint_spans_free(&t->sp[k]); }
+    memset(t, 0, sizeof *t);
+}
+
+/* Makes chart c's shape at extra turn j and scale g (q: scratch, 2 max_verts). Returns 0 or -1 (no memory). */
+static int turn_shape_make(const pack_ctx *P, const chart_info *c, int j, double g, double *q, turn_shape *t)
+{
+    const int R = P->resolution, pad = P->padding;
+    double mx, my;
+    chart_oriented(P, c, j, g, q, &t->w, &t->h, &mx, &my);
+    if ((t->w > R - 2 * pad && t->h > R - 2 * pad) || t->w > R || t->h > R) { t->state = 2; return 0; }
+    if (footprint_rasterize(q, P->ltri + 3 * (size_t)c->f_begin, c->f_end - c->f_begin, t->w, t->h, &t->fp[0]) != 0)
+        return -1;
+    t->have[0] = 1;
+    for (int k = 1; k < 4; k++) {
+        if (footprint_rotate(&t->fp[0], k, &t->fp[k]) != 0) return -1;
+        /* A half turn that maps the footprint onto itself finds the same places. */
+        t->have[k] = !(k >= 2 && footprint_equal(&t->fp[k], &t->fp[k - 2]));
+    }
+    for (int k = 0; k < 4; k++) {
+        if (t->have[k] && footprint_to_spans(&t->fp[k], &t->sp[k]) != 0) return -1;
+        t->bytes += (size_t)t->fp[k].w * t->fp[k].h + (t->have[k] ? (size_t)t->sp[k].count * 8 + (size_t)t->fp[k].h * 16 : 0);
+    }
+    t->state = 1;
+    return 0;
+}
+
+/* The shapes of every chart and turn at one scale, up to a memory budget
+ * (beyond it a shape is made for the moment and dropped). */
+typedef struct pack_cache {
+    double g;               /* the scale the shapes are for (0: none) */
+    int n;                  /* ncharts x (pack_turns_max + 1) */
+    turn_shape *t;
+    size_t bytes, budget;
+} pack_cache;
+
+static void pack_cache_reset(pack_cache *pc, double g)
+{
+    for (int i = 0; i < pc->n; i++)
+        if (pc->t[i].state) turn_shape_clear(&pc->t[i]);
+    pc->bytes = 0;
+    pc->g = g;
+}
+
+static int footprint_copy(const footprint *in, footprint *out)
+{
+    out->w = in->w;
+    out->h = in->h;
+    out->bits = malloc((size_t)in->w * in->h + 1);
+    if (!out->bits) return -1;
+    memcpy(out->bits, in->bits, (size_t)in->w * in->h);
+    return 0;
+}
+
 /* One packing at global scale g (pixels per world unit). Returns 1 when all
  * charts fit (pl filled), 0 when one does not (*frac_placed: share of the
  * charts' box area placed so far), -1 on allocation failure. */
-static int pack_attempt(const pack_ctx *P, const pack_heuristic *hs, double g, placement *pl, double *frac_placed)
+static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic *hs, double g, placement *pl,
+                        double *frac_placed)
 {
     const int R = P->resolution, pad = P->padding;
     occupancy occ;
     double *q = malloc(sizeof *q * 2 * (size_t)(P->max_verts > 0 ? P->max_verts : 1));
     if (!q || occupancy_init(&occ, R, pad) != 0) { free(q); return -1; }
+    if (pc->g != g) pack_cache_reset(pc, g);
     double placed = 0, total = 0;
     for (int i = 0; i < P->ncharts; i++) {
         const chart_info *c = &P->ch[i];
         if (c->f_end > c->f_begin) total += (g * c->W + 1) * (g * c->H + 1);
     }
     int rc = 1;
-    footprint fp[4], best_fp;
-    footprint_spans sp[4];
-    memset(fp, 0, sizeof fp);
-    memset(sp, 0, sizeof sp);
+    turn_shape scratch;
+    footprint best_fp;
+    memset(&scratch, 0, sizeof scratch);
     memset(&best_fp, 0, sizeof best_fp);
     for (int n = 0; n < P->ncharts && rc == 1; n++) {
         int ci = P->sorted[hs->order][n];
@@ -160,46 +229,41 @@ static int pack_attempt(const pack_ctx *P, const pack_heuristic *hs, double g, p
             if (j < pack_turns_max ? j % (pack_turns_max / hs->turns) != 0
                                    : c->fit_angle == 0 || (hs->turns == 1 && g * fmax(c->W, c->H) + 1 <= R - 2 * pad))
                 continue;
-            int w, h;
-            double mx, my;
-            chart_oriented(P, c, j, g, q, &w, &h, &mx, &my);
-            if ((w > R - 2 * pad && h > R - 2 * pad) || w > R || h > R) continue;
-            if (footprint_rasterize(q, P->ltri + 3 * (size_t)c->f_begin, c->f_end - c->f_begin, w, h, &fp[0]) != 0) {
-                rc = -1;
-                break;
+            turn_shape *t = &pc->t[(size_t)ci * (pack_turns_max + 1) + j];
+            if (!t->state) {
+                if (turn_shape_make(P, c, j, g, q, t) != 0) { turn_shape_clear(t); rc = -1; break; }
+                if (pc->bytes + t->bytes > pc->budget) { /* over budget: use it now, keep nothing */
+                    scratch = *t;
+                    memset(t, 0, sizeof *t);
+                    t = &scratch;
+                } else {
+                    pc->bytes += t->bytes;
+                }
             }
-            int have[4] = {1, 0, 0, 0};
-            for (int k = 1; k < 4 && rc == 1; k++) {
-                if (footprint_rotate(&fp[0], k, &fp[k]) != 0) { rc = -1; break; }
-                /* A half turn that maps the footprint onto itself finds the same places. */
-                have[k] = !(k >= 2 && footprint_equal(&fp[k], &fp[k - 2]));
-            }
-            for (int k = 0; k < 4 && rc == 1; k++)
-                if (have[k] && footprint_to_spans(&fp[k], &sp[k]) != 0) rc = -1;
+            if (t->state == 2) { if (t == &scratch) turn_shape_clear(&scratch); continue; }
             int won = -1;
-            for (int k = 0; k < 4 && rc == 1; k++) {
-                if (!have[k]) continue;
+            for (int k = 0; k < 4; k++) {
+                if (!t->have[k]) continue;
                 int x, y;
                 if (hs->choose == choose_lowest_top) {
                     /* Lowest top edge wins (keeps the filled part of the square low), then leftmost. */
-                    if (occupancy_find(&occ, &sp[k], best_top, &x, &y)) {
-                        int top = y + fp[k].h;
+                    if (occupancy_find(&occ, &t->sp[k], best_top, &x, &y)) {
+                        int top = y + t->fp[k].h;
                         if (top < best_top || (top == best_top && x < bx)) {
                             best_top = top; won = k; bx = x; by = y;
                         }
                     }
-                } else if (occupancy_find(&occ, &sp[k], best_k < 0 && won < 0 ? R + 1 : by + fp[k].h + 1, &x, &y)) {
+                } else if (occupancy_find(&occ, &t->sp[k], best_k < 0 && won < 0 ? R + 1 : by + t->fp[k].h + 1, &x, &y)) {
                     /* Lowest bottom edge wins, then leftmost. */
                     if ((best_k < 0 && won < 0) || y < by || (y == by && x < bx)) { won = k; bx = x; by = y; }
                 }
             }
             if (won >= 0) {
-                best_k = won; best_j = j; bw = w; bh = h;
+                best_k = won; best_j = j; bw = t->w; bh = t->h;
                 footprint_free(&best_fp);
-                best_fp = fp[won];
-                fp[won].bits = NULL;
+                if (footprint_copy(&t->fp[won], &best_fp) != 0) rc = -1;
             }
-            for (int k = 0; k < 4; k++) { footprint_free(&fp[k]); footprint_spans_free(&sp[k]); }
+            if (t == &scratch) turn_shape_clear(&scratch);
         }
         if (rc == 1 && best_k < 0) rc = 0;
         if (rc == 1) {
@@ -419,6 +483,9 @@ static void chart_place_uv(const placement *pl, int R, const double q[2], double
  * goes to placements, and small charts fill the gaps whatever the order:
  * one is enough; the free turns (4 times the placements each) pay off on
  * tens to hundreds of large, long or concave charts. */
+/* Memory the shapes of one scale may keep (256 MiB: a 1024 px atlas needs a few MiB). */
+#define PACK_CACHE_BYTES ((size_t)256 << 20)
+
 static int pack_heuristic_count(int ncharts)
 {
     return ncharts > 1000 ? 1 : ncharts > 300 ? 4 : PACK_HEURISTICS;
@@ -448,6 +515,8 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
 
     pack_ctx P;
     memset(&P, 0, sizeof P);
+    pack_cache cache;
+    memset(&cache, 0, sizeof cache);
     P.resolution = o.resolution;
     P.padding = o.padding;
     int *new_tri_uv = NULL, *old_of_new = NULL, nuv_new = 0;
@@ -455,6 +524,10 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     double *uv_new = NULL, *q = NULL;
     neuv_status st = pack_prepare(m, face_chart, ncharts, o.keep_scale, &P, &new_tri_uv, &old_of_new, &nuv_new);
     if (st != NEUV_OK) goto done;
+    cache.n = ncharts * (pack_turns_max + 1);
+    cache.t = calloc((size_t)cache.n + 1, sizeof *cache.t);
+    cache.budget = PACK_CACHE_BYTES;
+    if (!cache.t) { st = neuv_fail_nomem("atlas packing"); goto done; }
     pl = calloc((size_t)ncharts + 1, sizeof *pl);
     best_pl = calloc((size_t)ncharts + 1, sizeof *best_pl);
     uv_new = malloc(sizeof *uv_new * 2 * ((size_t)nuv_new + 1));
@@ -483,7 +556,7 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
         int nh = pack_heuristic_count(ncharts);
         for (int h = 0; h < nh && rc == 0; h++) {
             double fh;
-            rc = pack_attempt(&P, &heuristics[h], g, pl, &fh);
+            rc = pack_attempt(&P, &cache, &heuristics[h], g, pl, &fh);
             attempts++;
             if (fh > frac) frac = fh;
         }
@@ -539,6 +612,8 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
         res->attempts = attempts;
     }
 done:
+    if (cache.t) pack_cache_reset(&cache, 0);
+    free(cache.t);
     pack_ctx_free(&P);
     free(new_tri_uv); free(old_of_new); free(pl); free(best_pl); free(uv_new); free(q);
     return st;
