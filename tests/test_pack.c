@@ -212,7 +212,7 @@ static void check_layout(const neuv_mesh *m, const int *fc, int S, double pad_su
 }
 
 /* Everything the packer promises, on one mesh. */
-static void check_pack(const char *name, neuv_mesh *m, int resolution, int padding, double min_eff)
+static double check_pack(const char *name, neuv_mesh *m, int resolution, int padding, double min_eff)
 {
     int *fc = malloc(sizeof(int) * m->nf);
     int nc = uv_charts(m, fc);
@@ -269,6 +269,7 @@ static void check_pack(const char *name, neuv_mesh *m, int resolution, int paddi
     mesh_free(again);
     mesh_free(orig);
     free(fc); free(fc2); free(q0); free(q1); free(xf);
+    return res.efficiency;
 }
 
 static void test_hull_and_rect(void)
@@ -320,6 +321,17 @@ int main(void)
     neuv_mesh *m = procedural_charts(42, 24);
     check_pack("procedural 24 charts, 256 px pad 2", m, 256, 2, 0.40);
     mesh_free(m);
+    /* Few charts, where the order polish (pack_polish) matters most: the four
+     * fixed orders alone reach a mean of 0.637 on these seeds (0.616-0.657),
+     * the polish 0.661 (0.641-0.679). */
+    double few = 0;
+    for (uint64_t seed = 3; seed < 7; seed++) {
+        m = procedural_charts(seed, 8);
+        few += check_pack("procedural 8 charts, 256 px pad 2", m, 256, 2, 0.60) / 4;
+        mesh_free(m);
+    }
+    printf("procedural 8 charts: mean efficiency %.3f\n", few);
+    CHECK(few >= 0.65);
     m = procedural_charts(7, 60);
     check_pack("procedural 60 charts, 512 px pad 0", m, 512, 0, 0.55);
     mesh_free(m);

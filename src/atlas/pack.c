@@ -8,6 +8,7 @@
 #include "atlas/min_area_rect.h"
 #include "atlas/occupancy.h"
 #include "core/error.h"
+#include "core/rng.h"
 
 static const double half_pi = 1.57079632679489661923;
 /* Finest extra turn: a placement index j < pack_turns_max is the turn j * (pi/2) / pack_turns_max. */
@@ -33,12 +34,12 @@ typedef struct chart_info {
 typedef struct placement { int x, y, k, w, h, j; } placement;
 
 /* Orders the charts are placed in (largest first by each key). */
-enum { order_rect_area, order_perimeter, order_short_side, order_long_side, PACK_ORDERS };
+enum { order_rect_area, order_perimeter, order_short_side, order_long_side, order_shuffled, PACK_ORDERS };
 
 typedef struct pack_ctx {
     int ncharts;
     chart_info *ch;
-    int *sorted[PACK_ORDERS]; /* chart ids in the order of each placement heuristic */
+    int *sorted[PACK_ORDERS]; /* chart ids in the order of each placement heuristic (order_shuffled: pack_polish's) */
     int *ltri;              /* #F by 3, chart-local UV indices, faces grouped by chart */
     double *L;              /* #UV' by 2, chart UVs scaled, rotated, corner at the origin */
     int max_verts;
@@ -330,7 +331,9 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
     *new_tri_uv = malloc(sizeof **new_tri_uv * 3 * ((size_t)nf + 1));
     *old_of_new = malloc(sizeof **old_of_new * 3 * ((size_t)nf + 1));
     neuv_status st = NEUV_OK;
-    if (!P->ch || !P->sorted[0] || !P->sorted[1] || !P->sorted[2] || !P->sorted[3] || !P->ltri || !order || !start || !stamp || !map || !*new_tri_uv || !*old_of_new) {
+    int sorted_ok = 1;
+    for (int h = 0; h < PACK_ORDERS; h++) sorted_ok = sorted_ok && P->sorted[h];
+    if (!P->ch || !sorted_ok || !P->ltri || !order || !start || !stamp || !map || !*new_tri_uv || !*old_of_new) {
         st = neuv_fail_nomem("atlas packing");
         goto done;
     }
@@ -420,7 +423,10 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
     for (int h = 0; h < PACK_ORDERS; h++) {
         for (int c = 0; c < ncharts; c++) {
             const chart_info *ci = &P->ch[c];
-            co[c].key = h == order_rect_area ? ci->W * ci->H : h == order_perimeter ? ci->W + ci->H : h == order_short_side ? fmin(ci->W, ci->H) : ci->fit_side;
+            co[c].key = h == order_rect_area || h == order_shuffled ? ci->W * ci->H
+                        : h == order_perimeter                     ? ci->W + ci->H
+                        : h == order_short_side                    ? fmin(ci->W, ci->H)
+                                                                   : ci->fit_side;
             co[c].id = c;
         }
         qsort(co, (size_t)ncharts, sizeof *co, cmp_chart_order);
@@ -489,6 +495,54 @@ static void chart_place_uv(const placement *pl, int R, const double q[2], double
 static int pack_heuristic_count(int ncharts)
 {
     return ncharts > 1000 ? 1 : ncharts > 300 ? 4 : PACK_HEURISTICS;
+}
+
+/* Polish after the scale search (up to PACK_POLISH_MAX_CHARTS charts, where
+ * a placement pass is cheap): the fixed orders are only four of the many
+ * orders a few large charts can go in, and which one fits best is chaotic.
+ * Try orders shuffled around the largest-rectangle-first order (each key
+ * times a log-normal factor) at scales a step above the best fit; a fit
+ * raises the scale and the same step is tried again, PACK_POLISH_TRIES
+ * misses in a row move to a smaller step. The generator has a fixed seed,
+ * so the result depends only on the charts. Returns -1 on allocation
+ * failure, else 0 (*g and best_pl raised where a fit was found). */
+#define PACK_POLISH_MAX_CHARTS 64
+#define PACK_POLISH_TRIES 24
+
+static int pack_polish(pack_ctx *P, pack_cache *pc, double *g, placement *pl, placement *best_pl, int *attempts)
+{
+    static const double steps[] = {0.03, 0.01, 0.004};
+    if (P->ncharts < 2 || P->ncharts > PACK_POLISH_MAX_CHARTS) return 0;
+    chart_order *co = malloc(sizeof *co * (size_t)P->ncharts);
+    if (!co) return -1;
+    rng r;
+    rng_seed(&r, 0x70ac4u);
+    int rc = 0;
+    for (size_t s = 0; s < sizeof steps / sizeof steps[0] && rc == 0; s++) {
+        for (int misses = 0; misses < PACK_POLISH_TRIES && rc == 0;) {
+            for (int c = 0; c < P->ncharts; c++) {
+                const chart_info *ci = &P->ch[c];
+                co[c].key = ci->W * ci->H * exp(0.7 * rng_normal(&r));
+                co[c].id = c;
+            }
+            qsort(co, (size_t)P->ncharts, sizeof *co, cmp_chart_order);
+            for (int c = 0; c < P->ncharts; c++) P->sorted[order_shuffled][c] = co[c].id;
+            pack_heuristic hs = {order_shuffled, misses % 2 ? choose_lowest_top : choose_lowest_bottom, misses % 3 ? 4 : 8};
+            double g_try = *g * (1 + steps[s]), frac;
+            int fit = pack_attempt(P, pc, &hs, g_try, pl, &frac);
+            ++*attempts;
+            if (fit < 0) rc = -1;
+            else if (fit == 1) {
+                *g = g_try;
+                memcpy(best_pl, pl, sizeof *pl * (size_t)P->ncharts);
+                misses = 0;
+            } else {
+                misses++;
+            }
+        }
+    }
+    free(co);
+    return rc;
 }
 
 neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
@@ -585,6 +639,7 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
                        ncharts, o.resolution, o.padding);
         goto done;
     }
+    if (pack_polish(&P, &cache, &lo, pl, best_pl, &attempts) != 0) { st = neuv_fail_nomem("atlas packing"); goto done; }
     g = lo;
     for (int c = 0; c < ncharts; c++) {
         const chart_info *ci = &P.ch[c];
