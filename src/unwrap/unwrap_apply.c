@@ -265,9 +265,12 @@ static double tri_uv_area2(const double *uv, const int *t)
 
 /* Local repair of a few folded faces: the inner vertices of non-positive
  * faces move to the mean of their chart neighbours (one Tutte step), a few
- * rounds, so the rest of the chart keeps the model's UVs exactly. Returns 1
- * when the chart then passes the check, 0 when not (uv is then unchanged), -1 on no memory. */
-static int relax_folds(chart_piece *p, double *scratch)
+ * rounds, so the rest of the chart keeps the model's UVs exactly. With
+ * move_boundary, boundary vertices of such faces move too (a face folded
+ * over the chart's border has no inner vertex to move); the final check
+ * still rejects a border that crosses itself. Returns 1 when the chart then
+ * passes the check, 0 when not (uv is then unchanged), -1 on no memory. */
+static int relax_folds(chart_piece *p, double *scratch, int move_boundary)
 {
     const neuv_mesh *c = p->sub;
     int nv = c->nv, nf = c->nf;
@@ -309,7 +312,7 @@ static int relax_folds(chart_piece *p, double *scratch)
         for (int f = 0; f < nf; f++)
             for (int k = 0; k < 3; k++) {
                 int a = c->tri[3 * f + k];
-                if (!hot[a] || bnd[a]) continue;
+                if (!hot[a] || (bnd[a] && !move_boundary)) continue;
                 for (int j = 1; j < 3; j++) {
                     int b = c->tri[3 * f + (k + j) % 3];
                     scratch[2 * a] += p->uv[2 * b];
@@ -318,7 +321,7 @@ static int relax_folds(chart_piece *p, double *scratch)
                 }
             }
         for (int v = 0; v < nv; v++)
-            if (hot[v] && !bnd[v] && deg[v]) {
+            if (hot[v] && (!bnd[v] || move_boundary) && deg[v]) {
                 p->uv[2 * v] = scratch[2 * v] / deg[v];
                 p->uv[2 * v + 1] = scratch[2 * v + 1] / deg[v];
             }
@@ -457,6 +460,34 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
     free(tri); free(order); free(first);
     free(shrunk);
     return s;
+}
+
+/* A chart whose UVs reach past [0,1]^2 (network UVs near a chart's border
+ * may reach a little past the source's) moves back inside, to the padding
+ * margin, by a translation of that chart alone: the rest of the atlas keeps
+ * the model's layout. Overlaps this makes are resolve_overlaps' to mend. */
+static void pull_charts_inside(struct neuv_unwrap_result *r, chart_span *span)
+{
+    neuv_mesh *m = r->mesh;
+    double margin = (double)r->opts.padding / r->opts.resolution;
+    for (int c = 0; c < r->n_charts; c++) {
+        chart_span *sp = &span[c];
+        if (sp->count == 0) continue;
+        span_bounds(m, sp);
+        double d[2] = {0, 0};
+        for (int q = 0; q < 2; q++) {
+            if (sp->hi[q] - sp->lo[q] > 1 - 2 * margin) continue; /* wider than the square: fit_unit_square's */
+            if (sp->lo[q] < 0) d[q] = margin - sp->lo[q];
+            else if (sp->hi[q] > 1) d[q] = 1 - margin - sp->hi[q];
+        }
+        if (d[0] == 0 && d[1] == 0) continue;
+        for (int i = sp->first; i < sp->first + sp->count; i++) {
+            m->uv[2 * i] += d[0];
+            m->uv[2 * i + 1] += d[1];
+        }
+        span_bounds(m, sp);
+        unwrap_add_repair(r, c, "reached past [0,1]^2; moved inside by (%.4f, %.4f)", d[0], d[1]);
+    }
 }
 
 /* Moves the atlas into [0,1]^2 by one uniform scale and translation when a
@@ -630,7 +661,8 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             snprintf(why, sizeof why, "%d flipped, %d degenerate faces, %d boundary crossings%s", chk.flipped,
                      chk.degenerate, chk.boundary_crossings, chk.mirrored ? ", reversed orientation" : "");
             const char *how = "LSCM";
-            ok = relax_folds(p, scratch);
+            ok = relax_folds(p, scratch, 0);
+            if (ok == 0) ok = relax_folds(p, scratch, 1);
             if (ok > 0) {
                 unwrap_add_repair(r, c, "%s map folded on this mesh (%s); folded faces relaxed locally",
                                   net >= 0 ? "network" : "transferred", why);
@@ -686,6 +718,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     if (s == NEUV_OK && !r->transforms) s = neuv_fail_nomem("chart transforms");
     for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->transforms[c] = md->xf[model_chart[c]];
     free(model_chart);
+    if (s == NEUV_OK) pull_charts_inside(r, span);
     if (s == NEUV_OK) s = resolve_overlaps(r, span);
     free(span);
     if (s == NEUV_OK) fit_unit_square(r);
