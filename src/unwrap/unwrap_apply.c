@@ -265,12 +265,9 @@ static double tri_uv_area2(const double *uv, const int *t)
 
 /* Local repair of a few folded faces: the inner vertices of non-positive
  * faces move to the mean of their chart neighbours (one Tutte step), a few
- * rounds, so the rest of the chart keeps the model's UVs exactly. With
- * move_boundary, boundary vertices of such faces move too (a face folded
- * over the chart's border has no inner vertex to move); the final check
- * still rejects a border that crosses itself. Returns 1 when the chart then
- * passes the check, 0 when not (uv is then unchanged), -1 on no memory. */
-static int relax_folds(chart_piece *p, double *scratch, int move_boundary)
+ * rounds, so the rest of the chart keeps the model's UVs exactly. Returns 1
+ * when the chart then passes the check, 0 when not (uv is then unchanged), -1 on no memory. */
+static int relax_folds(chart_piece *p, double *scratch)
 {
     const neuv_mesh *c = p->sub;
     int nv = c->nv, nf = c->nf;
@@ -312,7 +309,7 @@ static int relax_folds(chart_piece *p, double *scratch, int move_boundary)
         for (int f = 0; f < nf; f++)
             for (int k = 0; k < 3; k++) {
                 int a = c->tri[3 * f + k];
-                if (!hot[a] || (bnd[a] && !move_boundary)) continue;
+                if (!hot[a] || bnd[a]) continue;
                 for (int j = 1; j < 3; j++) {
                     int b = c->tri[3 * f + (k + j) % 3];
                     scratch[2 * a] += p->uv[2 * b];
@@ -321,7 +318,7 @@ static int relax_folds(chart_piece *p, double *scratch, int move_boundary)
                 }
             }
         for (int v = 0; v < nv; v++)
-            if (hot[v] && (!bnd[v] || move_boundary) && deg[v]) {
+            if (hot[v] && !bnd[v] && deg[v]) {
                 p->uv[2 * v] = scratch[2 * v] / deg[v];
                 p->uv[2 * v + 1] = scratch[2 * v + 1] / deg[v];
             }
@@ -661,8 +658,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             snprintf(why, sizeof why, "%d flipped, %d degenerate faces, %d boundary crossings%s", chk.flipped,
                      chk.degenerate, chk.boundary_crossings, chk.mirrored ? ", reversed orientation" : "");
             const char *how = "LSCM";
-            ok = relax_folds(p, scratch, 0);
-            if (ok == 0) ok = relax_folds(p, scratch, 1);
+            ok = relax_folds(p, scratch);
             if (ok > 0) {
                 unwrap_add_repair(r, c, "%s map folded on this mesh (%s); folded faces relaxed locally",
                                   net >= 0 ? "network" : "transferred", why);
