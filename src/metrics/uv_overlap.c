@@ -108,7 +108,18 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
      * swept in bands of rows small enough to stay in cache. */
     size_t stride = (size_t)width + 1;
     int32_t *diff = calloc(stride * RASTER_BAND, sizeof *diff);
-    if (!rows || !diff) { free(rows); free(diff); return neuv_fail_nomem("overlap raster"); }
+    int nbands = (height + RASTER_BAND - 1) / RASTER_BAND;
+    /* Faces by the band of their first row (counting sort), and the faces
+     * that reach the band being drawn: each band visits only its own faces,
+     * so the sweep costs the bands each face spans, not bands times faces
+     * (a 1.4M-face atlas at 2048 px visited every face 64 times per test). */
+    int *band_first = calloc((size_t)nbands + 1, sizeof *band_first);
+    int *by_band = malloc(sizeof *by_band * (size_t)(nf > 0 ? nf : 1));
+    int *active = malloc(sizeof *active * (size_t)(nf > 0 ? nf : 1));
+    if (!rows || !diff || !band_first || !by_band || !active) {
+        free(rows); free(diff); free(band_first); free(by_band); free(active);
+        return neuv_fail_nomem("overlap raster");
+    }
     for (int f = 0; f < nf; f++) {
         rows[2 * f] = 1;
         rows[2 * f + 1] = 0;
@@ -124,10 +135,26 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
         rows[2 * f + 1] = (int)clamp_index(ceil(ymax - 0.5), height - 1);
     }
 
+    for (int f = 0; f < nf; f++)
+        if (rows[2 * f] <= rows[2 * f + 1]) band_first[rows[2 * f] / RASTER_BAND + 1]++;
+    for (int b = 0; b < nbands; b++) band_first[b + 1] += band_first[b];
+    int *fill = malloc(sizeof *fill * (size_t)nbands);
+    if (!fill) {
+        free(rows); free(diff); free(band_first); free(by_band); free(active);
+        return neuv_fail_nomem("overlap raster");
+    }
+    memcpy(fill, band_first, sizeof *fill * (size_t)nbands);
+    for (int f = 0; f < nf; f++)
+        if (rows[2 * f] <= rows[2 * f + 1]) by_band[fill[rows[2 * f] / RASTER_BAND]++] = f;
+    free(fill);
+    int nactive = 0;
     for (int band = 0; band < height; band += RASTER_BAND) {
         int band_end = band + RASTER_BAND - 1 < height - 1 ? band + RASTER_BAND - 1 : height - 1;
+        for (int k = band_first[band / RASTER_BAND]; k < band_first[band / RASTER_BAND + 1]; k++)
+            active[nactive++] = by_band[k];
         memset(diff, 0, sizeof *diff * stride * RASTER_BAND);
-        for (int f = 0; f < nf; f++) {
+        for (int a = 0; a < nactive; a++) {
+            int f = active[a];
             int j0 = rows[2 * f] > band ? rows[2 * f] : band;
             int j1 = rows[2 * f + 1] < band_end ? rows[2 * f + 1] : band_end;
             if (j0 > j1) continue;
@@ -157,6 +184,10 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
                 diff[(size_t)(j - band) * stride + span_hi + 1] -= 1;
             }
         }
+        int kept = 0;
+        for (int a = 0; a < nactive; a++)
+            if (rows[2 * active[a] + 1] > band_end) active[kept++] = active[a];
+        nactive = kept;
         for (int j = band; j <= band_end; j++) {
             const int32_t *row = diff + (size_t)(j - band) * stride;
             long long depth = 0;
@@ -167,8 +198,7 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
             }
         }
     }
-    free(rows);
-    free(diff);
+    free(rows); free(diff); free(band_first); free(by_band); free(active);
     return NEUV_OK;
 }
 
