@@ -198,10 +198,67 @@ static void test_camelhead(void)
     mesh_free(m);
 }
 
+/* Anchored LSCM: an exact similarity image of a flat grid is its own
+ * optimum (no conformal residual, no offset); a map with one interior
+ * vertex dragged across its neighbours (folded faces) comes back without
+ * folds and stays near the anchor away from that vertex, nearer as lambda
+ * grows; a weight of zero is refused. */
+static void test_anchored(void)
+{
+    neuv_mesh *g = shape_grid(12, 12, 1.0, 1.0, 0);
+    CHECK(g != NULL);
+    if (!g) return;
+    int nv = g->nv;
+    double *anchor = malloc(sizeof(double) * 2 * nv), *uv = malloc(sizeof(double) * 2 * nv);
+    double c = cos(0.4), s = sin(0.4);
+    for (int v = 0; v < nv; v++) {
+        double x = g->pos[3 * v], y = g->pos[3 * v + 1];
+        anchor[2 * v] = 2.5 * (c * x - s * y) + 3;
+        anchor[2 * v + 1] = 2.5 * (s * x + c * y) - 1;
+    }
+    CHECK_INT(lscm_anchored(g, anchor, 1.0, uv), NEUV_OK);
+    double err = 0;
+    for (int i = 0; i < 2 * nv; i++) err = fmax(err, fabs(uv[i] - anchor[i]));
+    printf("anchored LSCM, similarity anchor: max deviation %.2e\n", err);
+    CHECK(err < 1e-9);
+
+    /* Drag the vertex nearest the centre by 2.5 cells: its faces fold. */
+    int mid = 0;
+    for (int v = 0; v < nv; v++)
+        if (hypot(g->pos[3 * v] - 0.5, g->pos[3 * v + 1] - 0.5) < hypot(g->pos[3 * mid] - 0.5, g->pos[3 * mid + 1] - 0.5)) mid = v;
+    double cell = 2.5 / 12;
+    anchor[2 * mid] += 2.5 * cell;
+    uv_metrics folded = metrics_of(g, anchor);
+    CHECK(folded.flipped > 0);
+    double prev = INFINITY;
+    for (double lambda = 0.01; lambda <= 10.0; lambda *= 10) {
+        CHECK_INT(lscm_anchored(g, anchor, lambda, uv), NEUV_OK);
+        uv_metrics mt = metrics_of(g, uv);
+        double far = 0;
+        int nfar = 0;
+        for (int v = 0; v < nv; v++)
+            if (hypot(g->pos[3 * v] - g->pos[3 * mid], g->pos[3 * v + 1] - g->pos[3 * mid + 1]) > 0.3) {
+                far += hypot(uv[2 * v] - anchor[2 * v], uv[2 * v + 1] - anchor[2 * v + 1]);
+                nfar++;
+            }
+        far /= nfar;
+        printf("anchored LSCM, lambda %g: flipped %d (anchor %d), qce_mean %.4f, mean offset away from the drag %.2e cells\n",
+               lambda, mt.flipped, folded.flipped, mt.qce_mean, far / cell);
+        CHECK_INT(mt.flipped, 0);
+        CHECK(far < 0.05 * cell);
+        CHECK(far < prev + 1e-15 || lambda == 0.01);
+        prev = far;
+    }
+    CHECK_INT(lscm_anchored(g, anchor, 0.0, uv), NEUV_ERR_INPUT);
+    free(anchor); free(uv);
+    mesh_free(g);
+}
+
 int main(void)
 {
     test_flat();
     test_not_disk();
     test_camelhead();
+    test_anchored();
     return check_report("test_flatten");
 }

@@ -50,16 +50,16 @@ static void farthest_pair(const neuv_mesh *m, const int *b, int nb, int *pa, int
     *pb = best_b;
 }
 
-neuv_status lscm(const neuv_mesh *m, double *uv)
+/* The least-squares system and its solve. Either two pins (pin, pin_uv) or,
+ * with anchor != NULL and pin == NULL, no pin and the anchor term
+ * w sum_v a_v |uv_v - anchor_v|^2 (a_v: a third of the vertex's face areas). */
+static neuv_status lscm_solve(const neuv_mesh *m, const int *pin, double pin_uv[2][2], const double *anchor,
+                              double w, double *uv)
 {
-    int *boundary = NULL, nb = 0;
-    neuv_status s = flatten_require_disk(m, &boundary, &nb);
-    if (s) return s;
+    neuv_status s = NEUV_OK;
     const int nv = m->nv;
-    int pin[2];
-    farthest_pair(m, boundary, nb, &pin[0], &pin[1]);
-    free(boundary);
-    double pin_uv[2][2] = {{0, 0}, {sqrt(dist2(m->pos + 3 * pin[0], m->pos + 3 * pin[1])), 0}};
+    int no_pin[2] = {-1, -1};
+    if (!pin) pin = no_pin;
 
     /* Unknown index of (vertex v, coordinate c) at dof[2v + c]: -1 for the
      * pins and for vertices no face uses. */
@@ -71,7 +71,7 @@ neuv_status lscm(const neuv_mesh *m, double *uv)
     cholesky *chol = NULL;
     if (!dof || !used) { s = neuv_fail_nomem("LSCM unknowns"); goto done; }
     for (int i = 0; i < 3 * m->nf; i++) used[m->tri[i]] = 1;
-    used[pin[0]] = used[pin[1]] = 0;
+    if (pin[0] >= 0) used[pin[0]] = used[pin[1]] = 0;
     int n = 0;
     for (int v = 0; v < nv; v++) {
         dof[2 * v] = used[v] ? n++ : -1;
@@ -124,6 +124,17 @@ neuv_status lscm(const neuv_mesh *m, double *uv)
             }
         }
     }
+    if (anchor)
+        for (int f = 0; f < m->nf && !s; f++) {
+            double a = w * mesh_face_area(m, f) / 3;
+            for (int j = 0; j < 3 && !s; j++) {
+                int v = m->tri[3 * f + j];
+                for (int c = 0; c < 2 && !s; c++) {
+                    rhs[dof[2 * v + c]] += a * anchor[2 * v + c];
+                    s = triplets_add(&t, dof[2 * v + c], dof[2 * v + c], a);
+                }
+            }
+        }
     if (s) goto done;
     if ((s = sparse_from_triplets(&t, &k))) goto done;
     /* A whisker of Tikhonov regularization (1e-15 of the mean diagonal) keeps
@@ -148,11 +159,33 @@ neuv_status lscm(const neuv_mesh *m, double *uv)
         for (int c = 0; c < 2; c++)
             uv[2 * v + c] = dof[2 * v + c] >= 0 ? x[dof[2 * v + c]]
                           : v == pin[0] ? pin_uv[0][c] : v == pin[1] ? pin_uv[1][c] : 0.0;
-    flatten_orient_ccw(m, uv);
+    if (!anchor) flatten_orient_ccw(m, uv);
 done:
     cholesky_free(chol);
     sparse_free(&k);
     triplets_free(&t);
     free(dof); free(used); free(rhs); free(x);
     return s;
+}
+
+neuv_status lscm(const neuv_mesh *m, double *uv)
+{
+    int *boundary = NULL, nb = 0;
+    neuv_status s = flatten_require_disk(m, &boundary, &nb);
+    if (s) return s;
+    int pin[2];
+    farthest_pair(m, boundary, nb, &pin[0], &pin[1]);
+    free(boundary);
+    double pin_uv[2][2] = {{0, 0}, {sqrt(dist2(m->pos + 3 * pin[0], m->pos + 3 * pin[1])), 0}};
+    return lscm_solve(m, pin, pin_uv, NULL, 0, uv);
+}
+
+neuv_status lscm_anchored(const neuv_mesh *m, const double *anchor, double lambda, double *uv)
+{
+    neuv_status s = flatten_require_disk(m, NULL, NULL);
+    if (s) return s;
+    if (!(lambda > 0)) return neuv_fail(NEUV_ERR_INPUT, "anchored LSCM needs a positive weight, not %g", lambda);
+    double area = mesh_total_area(m);
+    if (!(area > 0)) return neuv_fail(NEUV_ERR_INPUT, "anchored LSCM: the chart has no area");
+    return lscm_solve(m, NULL, NULL, anchor, lambda / area, uv);
 }

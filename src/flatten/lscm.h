@@ -18,4 +18,16 @@
 
 neuv_status lscm(const neuv_mesh *m, double *uv);
 
+/* LSCM held near a given map instead of pinned: minimizes the same
+ * conformal energy plus (lambda / A) sum_v a_v |uv_v - anchor_v|^2, with A
+ * the chart's 3D area and a_v a third of the areas of the faces at v. Both
+ * terms scale alike with the UV units, so lambda alone sets the balance:
+ * an offset of d chart sides (sqrt A) costs what a conformal residual of
+ * about sqrt(lambda) d over the chart does. Used to mend a map with a few
+ * folded faces while keeping it where it was (the anchor's frame, scale and
+ * orientation); the result is not guaranteed to be fold-free (check it).
+ * Inputs: m one disk, anchor #V by 2, lambda > 0. Outputs: uv #V by 2.
+ * Errors as lscm(), and NEUV_ERR_INPUT for lambda <= 0 or no area. */
+neuv_status lscm_anchored(const neuv_mesh *m, const double *anchor, double lambda, double *uv);
+
 #endif

@@ -328,22 +328,37 @@ static int relax_folds(chart_piece *p, double *scratch)
     return ok;
 }
 
-/* Flattens a piece classically (LSCM, harmonic if LSCM folds) and aligns it to
- * target. Returns 1 when the result is usable, 0 when not, -1 on no memory;
- * a flattening error (not a disk) counts as unusable. */
+/* Anchor weights of the anchored LSCM tried first (flatten/lscm.h): the
+ * conformal energy unfolds the map while the anchor keeps it where the
+ * model put it; a smaller weight unfolds harder folds. */
+static const double reflatten_anchor_lambda[] = {10.0, 1.0, 0.1};
+
+/* Flattens a piece again: LSCM anchored to target, then plain LSCM and
+ * harmonic aligned to target by a similarity. Returns 1 when the result is
+ * usable, 0 when not, -1 on no memory; a flattening error (not a disk)
+ * counts as unusable. */
 static int reflatten(chart_piece *p, const double *target, double *scratch, const char **how)
 {
     chart_uv_check chk;
-    for (int attempt = 0; attempt < 2; attempt++) {
-        neuv_status s = attempt == 0 ? lscm(p->sub, p->uv) : harmonic(p->sub, p->uv);
-        *how = attempt == 0 ? "LSCM" : "harmonic";
+    const int anchored = (int)(sizeof reflatten_anchor_lambda / sizeof reflatten_anchor_lambda[0]);
+    for (int attempt = 0; attempt < anchored + 2; attempt++) {
+        neuv_status s;
+        if (attempt < anchored) {
+            s = lscm_anchored(p->sub, target, reflatten_anchor_lambda[attempt], p->uv);
+            *how = "LSCM anchored to the model's map";
+        } else {
+            s = attempt == anchored ? lscm(p->sub, p->uv) : harmonic(p->sub, p->uv);
+            *how = attempt == anchored ? "LSCM, aligned to it" : "harmonic, aligned to it";
+        }
         if (s == NEUV_ERR_NOMEM) return -1;
         if (s != NEUV_OK) continue;
-        int ok = chart_uv_check_run(p->sub, p->uv, &chk); /* orients it counter-clockwise */
-        if (ok < 0) return -1;
-        if (!ok) continue;
-        align_similarity(p->uv, target, p->sub->nv);
-        ok = uv_usable(p, p->uv, scratch, &chk);
+        if (attempt >= anchored) {
+            int ok = chart_uv_check_run(p->sub, p->uv, &chk); /* orients it counter-clockwise */
+            if (ok < 0) return -1;
+            if (!ok) continue;
+            align_similarity(p->uv, target, p->sub->nv);
+        }
+        int ok = uv_usable(p, p->uv, scratch, &chk);
         if (ok) return ok;
     }
     return 0;
@@ -675,7 +690,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
                                   net >= 0 ? "network" : "transferred", why);
             } else if (ok == 0 && (ok = reflatten(p, target, scratch, &how)) > 0) {
                 repaired[c] = 1;
-                unwrap_add_repair(r, c, "%s map folded on this mesh (%s); re-flattened with %s and aligned to it",
+                unwrap_add_repair(r, c, "%s map folded on this mesh (%s); re-flattened with %s",
                                   net >= 0 ? "network" : "transferred", why, how);
             } else if (ok == 0) {
                 if (p->sub->nf < 2 || splits >= m->nf) {
