@@ -141,8 +141,38 @@ static int piece_accepts(void *user, int chart, const double *corner_uv)
     return ok < 0 ? -1 : ok && !chk.mirrored;
 }
 
+/* The conformal step that opens the refinement: LSCM anchored to the
+ * networks' map (flatten/lscm.h) with this weight, kept when it is injective
+ * with the same orientation. λ = 1: moving the whole chart by its own size
+ * costs what a unit conformal residual over the chart does, so the map
+ * keeps the networks' placement, orientation and scale while the solve
+ * removes the angle distortion the networks leave (their capacity bounds
+ * it; Adam on vertices alone takes thousands of steps to do the same). */
+#define REFINE_ANCHOR_LAMBDA 1.0
+
+static neuv_status refine_conformal_step(chart_piece *p)
+{
+    size_t bytes = sizeof(double) * 2 * (size_t)p->sub->nv;
+    double *solved = malloc(bytes);
+    if (!solved) return neuv_fail_nomem("chart UVs");
+    neuv_status s = lscm_anchored(p->sub, p->uv, REFINE_ANCHOR_LAMBDA, solved);
+    if (s == NEUV_ERR_NOMEM) { free(solved); return s; }
+    if (s == NEUV_OK) {
+        chart_uv_check chk;
+        int ok = chart_uv_check_run(p->sub, solved, &chk);
+        if (ok < 0) s = neuv_fail_nomem("chart check");
+        else if (ok && !chk.mirrored) memcpy(p->uv, solved, bytes);
+    }
+    free(solved);
+    return s == NEUV_ERR_NOMEM ? s : NEUV_OK; /* a failed solve keeps the networks' map */
+}
+
 neuv_status unwrap_refine_piece(chart_piece *p, int steps, uv_refine_report *rep)
 {
+    if (steps > 0) {
+        neuv_status s = refine_conformal_step(p);
+        if (s != NEUV_OK) return s;
+    }
     uv_refine_options ro;
     uv_refine_default_options(&ro);
     ro.iters = steps;

@@ -86,9 +86,11 @@ typedef struct chart_piece {
 void unwrap_piece_clear(chart_piece *p);
 /* Builds chart `id` of m as a piece with zeroed UVs (keeps from_split). */
 neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p);
-/* Vertex refinement (flatten/uv_refine.h) of a piece whose UVs pass the
- * injectivity check, counter-clockwise: `steps` Adam steps, checked every 50;
- * the piece keeps its last map that passes. Returns NEUV_OK or NEUV_ERR_NOMEM. */
+/* Vertex refinement of a piece whose UVs pass the injectivity check,
+ * counter-clockwise: first LSCM anchored to its map (flatten/lscm.h, kept
+ * when injective), then `steps` Adam steps of flatten/uv_refine.h, checked
+ * every 10; the piece keeps its last map that passes. steps = 0: nothing.
+ * Returns NEUV_OK or NEUV_ERR_NOMEM. */
 struct uv_refine_report;
 neuv_status unwrap_refine_piece(chart_piece *p, int steps, struct uv_refine_report *rep);
 /* Per-corner UVs of the whole mesh from the charts' per-vertex UVs: a mesh
