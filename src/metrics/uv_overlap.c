@@ -114,10 +114,11 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
      * so the sweep costs the bands each face spans, not bands times faces
      * (a 1.4M-face atlas at 2048 px visited every face 64 times per test). */
     int *band_first = calloc((size_t)nbands + 1, sizeof *band_first);
+    int *fill = malloc(sizeof *fill * (size_t)nbands);
     int *by_band = malloc(sizeof *by_band * (size_t)(nf > 0 ? nf : 1));
     int *active = malloc(sizeof *active * (size_t)(nf > 0 ? nf : 1));
-    if (!rows || !diff || !band_first || !by_band || !active) {
-        free(rows); free(diff); free(band_first); free(by_band); free(active);
+    if (!rows || !diff || !band_first || !fill || !by_band || !active) {
+        free(rows); free(diff); free(band_first); free(fill); free(by_band); free(active);
         return neuv_fail_nomem("overlap raster");
     }
     for (int f = 0; f < nf; f++) {
@@ -138,15 +139,9 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
     for (int f = 0; f < nf; f++)
         if (rows[2 * f] <= rows[2 * f + 1]) band_first[rows[2 * f] / RASTER_BAND + 1]++;
     for (int b = 0; b < nbands; b++) band_first[b + 1] += band_first[b];
-    int *fill = malloc(sizeof *fill * (size_t)nbands);
-    if (!fill) {
-        free(rows); free(diff); free(band_first); free(by_band); free(active);
-        return neuv_fail_nomem("overlap raster");
-    }
     memcpy(fill, band_first, sizeof *fill * (size_t)nbands);
     for (int f = 0; f < nf; f++)
         if (rows[2 * f] <= rows[2 * f + 1]) by_band[fill[rows[2 * f] / RASTER_BAND]++] = f;
-    free(fill);
     int nactive = 0;
     for (int band = 0; band < height; band += RASTER_BAND) {
         int band_end = band + RASTER_BAND - 1 < height - 1 ? band + RASTER_BAND - 1 : height - 1;
@@ -198,7 +193,7 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
             }
         }
     }
-    free(rows); free(diff); free(band_first); free(by_band); free(active);
+    free(rows); free(diff); free(band_first); free(fill); free(by_band); free(active);
     return NEUV_OK;
 }
 
