@@ -1,7 +1,9 @@
 /* The parameterization networks: a flat grid chart and a curved cap trained
  * for a bounded number of steps reach near-conformal maps with no flipped
  * face and a small cycle error; the same seed and threads give the same
- * bytes; the kept model reapplies to the same points; bad input is refused. */
+ * bytes; the kept model reapplies to the same points, maps charts given anew
+ * (param_net_infer) exactly as trained, and fine-tuning starts from it; bad
+ * input is refused. */
 #include "check.h"
 
 #include "core/rng.h"
@@ -146,7 +148,9 @@ int main(void)
             for (int k = 0; k < FD; k++)
                 feat[FD * v + k] = (float)(20.0 + 5.0 * sin((k + 1) * g2->pos[3 * v] + k * g2->pos[3 * v + 1]));
         double *uvf = malloc(sizeof(double) * 6 * (size_t)g2->nf);
-        CHECK_INT(param_net_flatten(g2, ch, 2, feat, FD, &o, uvf, &rep), NEUV_OK);
+        param_net_options ok = o;
+        ok.keep_model = 1;
+        CHECK_INT(param_net_flatten(g2, ch, 2, feat, FD, &ok, uvf, &rep), NEUV_OK);
         CHECK(corner_metrics(g2, uvf, &mt) == 0);
         printf("two charts, large features: qce_mean %.4f, flipped %d, cycle_rms %.4f\n", mt.qce_mean, mt.flipped,
                rep.cycle_rms);
@@ -155,7 +159,42 @@ int main(void)
 #ifndef __SANITIZE_ADDRESS__
         CHECK_INT(mt.flipped, 0);
 #endif
-        free(uvf); free(feat); free(ch); mesh_free(g2);
+        param_net_model *model = rep.model;
+        CHECK(model && model->psi_shift && model->psi_mul);
+
+        /* Inference on charts given anew (a category model's path): the chart
+         * frames, ψ with the stored standardization and MLP_f reproduce the
+         * trained map (same rows, so the same float products). */
+        double *uvi = malloc(sizeof(double) * 6 * (size_t)g2->nf);
+        param_net_report ir;
+        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD, uvi, &ir), NEUV_OK);
+        double worst = 0;
+        for (long k = 0; k < 6L * g2->nf; k++) worst = fmax(worst, fabs(uvi[k] - uvf[k]));
+        printf("inference on the training charts: largest UV difference %.3g\n", worst);
+        CHECK(worst < 1e-6);
+        CHECK_INT(ir.flipped, 0);
+        /* Features of another size, or a model without the standardization: refused. */
+        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD / 2, uvi, NULL), NEUV_ERR_INPUT);
+        double *shift = model->psi_shift;
+        model->psi_shift = NULL;
+        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD, uvi, NULL), NEUV_ERR_INPUT);
+        model->psi_shift = shift;
+
+        /* Fine-tuning starts from the model: one step's loss is the trained
+         * loss, far below a fresh network's first step. */
+        param_net_options ft = o;
+        ft.iters = ft.min_iters = 1;
+        param_net_report fresh, tuned;
+        CHECK_INT(param_net_flatten(g2, ch, 2, feat, FD, &ft, uvi, &fresh), NEUV_OK);
+        ft.init = model;
+        CHECK_INT(param_net_flatten(g2, ch, 2, feat, FD, &ft, uvi, &tuned), NEUV_OK);
+        printf("one step: fresh loss %.5f, from the model %.5f (trained %.5f)\n", fresh.loss, tuned.loss, rep.loss);
+        CHECK(tuned.loss < 0.1 * fresh.loss);
+        CHECK(tuned.loss < 3 * rep.loss + 1e-3);
+        ft.width = o.width / 2;
+        CHECK_INT(param_net_flatten(g2, ch, 2, feat, FD, &ft, uvi, NULL), NEUV_ERR_INPUT);
+        param_net_model_free(model);
+        free(uvi); free(uvf); free(feat); free(ch); mesh_free(g2);
     }
 
     /* A curved disk: the upper half of a sphere. */

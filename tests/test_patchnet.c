@@ -1,6 +1,7 @@
 /* PatchNet: loss values on hand-checkable cases, their gradients by finite
  * differences, the cube's six sides as six charts, disk charts covering
- * every face on a sphere, a torus and fertility.off, and determinism. */
+ * every face on a sphere, a torus and fertility.off, one network trained on
+ * several shapes, and determinism. */
 #include <math.h>
 
 #include "check.h"
@@ -9,6 +10,7 @@
 #include "geometry/operators.h"
 #include "losses/patch_losses.h"
 #include "mesh/clean.h"
+#include "mesh/shape_family.h"
 #include "mesh/shapes.h"
 #include "models/patchnet.h"
 
@@ -276,6 +278,58 @@ static void test_auto_disks(void)
     mesh_free(m);
 }
 
+/* One network trained on two members of the bent-capsule family (a category
+ * model's PatchNet): labels on both and on an unseen member cut into disk
+ * charts covering every face, several patches used on each, and the same
+ * bytes twice. */
+static void test_several_shapes(void)
+{
+    neuv_mesh *m[3];
+    operators ops[3];
+    operators_params p = operators_default_params();
+    for (int i = 0; i < 3; i++) {
+        m[i] = shape_capsule_family((uint64_t)i);
+        CHECK(m[i] && operators_compute(m[i], &p, &ops[i]) == NEUV_OK);
+    }
+    patchnet_options o;
+    patchnet_default_options(&o);
+    o.charts = 4;
+    o.iters = SANITIZED ? 10 : 80;
+    const neuv_mesh *ms[2] = {m[0], m[1]};
+    const operators *os[2] = {&ops[0], &ops[1]};
+    float *x = NULL;
+    int dim = 0;
+    CHECK(diffusion_net_input_features(m[0], &ops[0], o.features, &x, &dim) == NEUV_OK);
+    free(x);
+    patchnet_model a, b;
+    CHECK(patchnet_model_create(&a, &o, dim, 4) == NEUV_OK);
+    CHECK(patchnet_model_create(&b, &o, dim, 4) == NEUV_OK);
+    patchnet_report rep;
+    CHECK(patchnet_train_shapes(&a, ms, os, 2, &o, &rep) == NEUV_OK);
+    CHECK(rep.iterations > 0 && rep.iterations <= o.iters && isfinite(rep.loss));
+    CHECK(patchnet_train_shapes(&b, ms, os, 2, &o, NULL) == NEUV_OK);
+    CHECK_INT(patchnet_train_shapes(&b, ms, os, 0, &o, NULL), NEUV_ERR_INPUT);
+    const char *names[3] = {"family member 0 (trained)", "family member 1 (trained)", "family member 2 (unseen)"};
+    for (int i = 0; i < 3; i++) {
+        int *la = malloc(sizeof(int) * m[i]->nf), *lb = malloc(sizeof(int) * m[i]->nf), used[4] = {0};
+        CHECK(patchnet_infer(&a, m[i], &ops[i], la) == NEUV_OK);
+        CHECK(patchnet_infer(&b, m[i], &ops[i], lb) == NEUV_OK);
+        CHECK(!memcmp(la, lb, sizeof(int) * m[i]->nf));
+        for (int f = 0; f < m[i]->nf; f++) used[la[f]] = 1;
+        CHECK(used[0] + used[1] + used[2] + used[3] >= 2);
+        segmented sg;
+        memset(&sg, 0, sizeof sg);
+        sg.chart = malloc(sizeof(int) * m[i]->nf);
+        CHECK(patchnet_charts_from_model(&a, m[i], &ops[i], &o, sg.chart, &sg.n, NULL, NULL, &sg.rep) == NEUV_OK);
+        sg.rep.iterations = rep.iterations;
+        check_disk_cover(m[i], &sg, names[i]);
+        free(sg.chart); free(la); free(lb);
+    }
+    patchnet_model_free(&a);
+    patchnet_model_free(&b);
+    for (int i = 0; i < 3; i++) { operators_free(&ops[i]); mesh_free(m[i]); }
+}
+
 int main(void)
 {
     nn_set_threads(1);
@@ -284,5 +338,6 @@ int main(void)
     test_loss_gradients();
     test_cube_sides();
     test_auto_disks();
+    test_several_shapes();
     return check_report("test_patchnet");
 }

@@ -70,6 +70,11 @@ typedef struct train_data {
     float *psi;        /* n_charts by psi_dim (pooled mode) */
     int psi_dim;
     double *center, *scale, *rot;
+    /* ψ standardization: computed over this data's rows, or given (a model
+     * applied to new charts must see them standardized as in training). */
+    const double *given_shift, *given_mul;
+    double *shift, *mul;   /* psi_dim each: standardized = (raw - shift) * mul */
+    int skip_pairs;        /* inference: normalization only, no L_iso pairs */
 } train_data;
 
 static void train_data_free(train_data *d)
@@ -77,6 +82,7 @@ static void train_data_free(train_data *d)
     free(d->vmesh); free(d->vchart); free(d->x); free(d->tri); free(d->fmesh); free(d->fchart);
     free(d->fcum); param_corners_free(&d->corners); free(d->cos3d); free(d->area3d);
     geodesic_pairs_free(&d->pairs); free(d->feat); free(d->psi); free(d->center); free(d->scale); free(d->rot);
+    free(d->shift); free(d->mul);
     memset(d, 0, sizeof *d);
 }
 
@@ -203,7 +209,7 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
     d->scale[c] = scale;
     double *R = d->rot + 9 * c;
     chart_frame(sub, cen, R);
-    s = heat_geodesics_pairs_within(hg, o->sigma / scale, NULL, 0, &pp);
+    if (!d->skip_pairs) s = heat_geodesics_pairs_within(hg, o->sigma / scale, NULL, 0, &pp);
     if (s != NEUV_OK) goto done;
     int vb = *nv_used, fb = *nf_used;
     for (size_t k = 0; k < pp.n; k++) {
@@ -233,7 +239,8 @@ done:
     return s;
 }
 
-/* Standardizes ψ rows in place: every column to zero mean and unit variance
+/* Standardizes ψ rows in place (d->shift, d->mul keep how; given ones are
+ * applied as they are): every column to zero mean and unit variance
  * over the rows, then every row scaled by 1/sqrt(dim) so that a ψ row has an
  * RMS norm of about 1 whatever its dimension. Why: DiffusionNet features are
  * O(5) in magnitude (spot: mean |f| 4.7, 64 pooled numbers); fed raw, the ψ
@@ -241,18 +248,31 @@ done:
  * ~30x at initialization, the output tanh saturates and the map collapses to
  * one point per chart (measured: every chart of spot degenerate, L_cycle
  * stuck at 1.1). A column that does not vary (one chart) becomes 0. */
-static void psi_standardize(float *rows, long n, int dim)
+static neuv_status psi_standardize(float *rows, long n, int dim, train_data *d)
 {
+    d->shift = malloc(sizeof(double) * (size_t)dim);
+    d->mul = malloc(sizeof(double) * (size_t)dim);
+    if (!d->shift || !d->mul) return neuv_fail_nomem("psi standardization");
     double inv = 1.0 / sqrt((double)dim);
     for (int k = 0; k < dim; k++) {
-        double mean = 0, var = 0;
-        for (long i = 0; i < n; i++) mean += rows[i * dim + k];
-        mean /= (double)n;
-        for (long i = 0; i < n; i++) var += (rows[i * dim + k] - mean) * (rows[i * dim + k] - mean);
-        double sd = sqrt(var / (double)n);
-        double mul = sd > 1e-8 ? inv / sd : 0;
+        double mean, mul;
+        if (d->given_shift) {
+            mean = d->given_shift[k];
+            mul = d->given_mul[k];
+        } else {
+            double var = 0;
+            mean = 0;
+            for (long i = 0; i < n; i++) mean += rows[i * dim + k];
+            mean /= (double)n;
+            for (long i = 0; i < n; i++) var += (rows[i * dim + k] - mean) * (rows[i * dim + k] - mean);
+            double sd = sqrt(var / (double)n);
+            mul = sd > 1e-8 ? inv / sd : 0;
+        }
+        d->shift[k] = mean;
+        d->mul[k] = mul;
         for (long i = 0; i < n; i++) rows[i * dim + k] = (float)((rows[i * dim + k] - mean) * mul);
     }
+    return NEUV_OK;
 }
 
 /* ψ rows: pooled per chart, or per chart vertex (see param_net.h). */
@@ -285,10 +305,9 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
     }
     free(vn);
     if (mode == PARAM_PSI_PER_VERTEX) {
-        psi_standardize(rows, d->nv, pd);
         d->feat = rows;
         d->psi_dim = pd;
-        return NEUV_OK;
+        return psi_standardize(rows, d->nv, pd, d);
     }
     /* Pooled: features → [mean, max]; no features → [centroid, mean normal]
      * (the centroid and normal are themselves means, a max adds nothing). */
@@ -312,16 +331,20 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
         for (int k = 0; k < pd; k++)
             d->psi[(size_t)c * od + k] = (float)(acc[(size_t)c * pd + k] / (cnt[c] ? cnt[c] : 1));
     free(acc); free(cnt); free(rows);
-    psi_standardize(d->psi, d->n_charts, od);
     d->psi_dim = od;
-    return NEUV_OK;
+    return psi_standardize(d->psi, d->n_charts, od, d);
 }
 
+/* norm: a model whose ψ standardization the rows take (NULL: computed over
+ * them); skip_pairs: no L_iso pairs (inference). */
 static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, int n_charts, const float *feat,
-                                    int dim, const param_net_options *o, train_data *d)
+                                    int dim, const param_net_options *o, const param_net_model *norm,
+                                    int skip_pairs, train_data *d)
 {
     memset(d, 0, sizeof *d);
     d->n_charts = n_charts;
+    d->skip_pairs = skip_pairs;
+    if (norm) { d->given_shift = norm->psi_shift; d->given_mul = norm->psi_mul; }
     /* Chart vertex count: one per (chart, vertex) pair. */
     int *seen = malloc((size_t)m->nv * sizeof(int));
     if (!seen) return neuv_fail_nomem("chart vertices");
@@ -505,6 +528,63 @@ static float lr_cosine_at(void *user, long step, float base_lr)
     return (float)(base_lr * (c->final_ratio + (1 - c->final_ratio) * 0.5 * (1 + cos(3.14159265358979323846 * t))));
 }
 
+/* The networks' map at every chart vertex, each chart turned
+ * counter-clockwise (mirror[c] = 1 when u was negated), as per-corner UVs in
+ * mesh units; also the faces that are still clockwise and the RMS cycle error. */
+static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const train_data *d, int *mirror,
+                                double *corner_uv, int *flipped, double *cycle_rms)
+{
+    int pooled = model->psi_mode == PARAM_PSI_POOLED;
+    double *chart_sum = malloc((size_t)d->n_charts * sizeof(double));
+    float *orient = malloc((size_t)(d->nf > 0 ? d->nf : 1) * sizeof(float));
+    if (!chart_sum || !orient) { free(chart_sum); free(orient); return neuv_fail_nomem("chart orientation"); }
+    nn_ctx_reset(ctx);
+    nn_tensor *x = nn_from(ctx, d->nv, 3, d->x);
+    nn_tensor *psi = pooled ? nn_view(ctx, d->n_charts, d->psi_dim, d->psi) : nn_from(ctx, d->nv, d->psi_dim, d->feat);
+    nn_tensor *uv = param_mlp_forward(ctx, &model->f, x, psi, pooled ? d->vchart : NULL);
+    nn_tensor *xr = param_mlp_forward(ctx, &model->g, uv, psi, pooled ? d->vchart : NULL);
+    if (!uv || !xr) { free(chart_sum); free(orient); return nn_ctx_status(ctx); }
+    double cyc = 0;
+    for (long i = 0; i < (long)d->nv * 3; i++) cyc += (double)(xr->data[i] - x->data[i]) * (xr->data[i] - x->data[i]);
+    *cycle_rms = sqrt(cyc / d->nv);
+    chart_orientation(d, uv->data, chart_sum, orient);
+    for (int c = 0; c < d->n_charts; c++) mirror[c] = chart_sum[c] < 0;
+    *flipped = 0;
+    for (int f = 0; f < d->nf; f++) {
+        double a = face_area_uv(uv->data, d->tri + 3 * f) * orient[f];
+        if (a <= 0) (*flipped)++;
+        int c = d->fchart[f], mf = d->fmesh[f];
+        double sc = d->scale[c], sign = mirror[c] ? -1 : 1;
+        for (int k = 0; k < 3; k++) {
+            const float *p = uv->data + 2 * d->tri[3 * f + k];
+            corner_uv[6 * mf + 2 * k] = sign * p[0] / sc;
+            corner_uv[6 * mf + 2 * k + 1] = p[1] / sc;
+        }
+    }
+    free(chart_sum);
+    free(orient);
+    return NEUV_OK;
+}
+
+/* Starts training from a trained model's weights (fine-tuning): the
+ * configurations must match. */
+static neuv_status copy_weights(const param_net_model *from, param_net_model *to, int psi_dim)
+{
+    if (from->psi_dim != psi_dim || from->params.n != to->params.n || from->psi_mode != to->psi_mode ||
+        from->f.width != to->f.width || from->f.depth != to->f.depth)
+        return neuv_fail(NEUV_ERR_INPUT, "fine-tuning: the model's networks (width %d, depth %d, psi %d) differ from "
+                                         "these options (width %d, depth %d, psi %d)",
+                         from->f.width, from->f.depth, from->psi_dim, to->f.width, to->f.depth, psi_dim);
+    for (int k = 0; k < to->params.n; k++) {
+        const nn_tensor *a = from->params.t[k];
+        nn_tensor *b = to->params.t[k];
+        if (a->rows != b->rows || a->cols != b->cols || strcmp(a->name, b->name) != 0)
+            return neuv_fail(NEUV_ERR_INPUT, "fine-tuning: weight '%s' differs from the model's '%s'", b->name, a->name);
+        memcpy(b->data, a->data, sizeof(float) * (size_t)a->rows * a->cols);
+    }
+    return NEUV_OK;
+}
+
 neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_charts,
                               const float *vertex_features, int feature_dim,
                               const param_net_options *opts, double *corner_uv, param_net_report *rep)
@@ -527,7 +607,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     param_net_model *model = calloc(1, sizeof *model);
     if (!model) return neuv_fail_nomem("parameterization model");
     nn_params_init(&model->params);
-    s = train_data_build(m, face_chart, n_charts, vertex_features, feature_dim, o, &d);
+    s = train_data_build(m, face_chart, n_charts, vertex_features, feature_dim, o, o->init, 0, &d);
     if (s != NEUV_OK) goto done;
     rep->pairs = (long)d.pairs.n;
     s = step_buffers_init(&d, o, &b);
@@ -538,8 +618,9 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     s = param_mlp_create(&model->f, 3, d.psi_dim, o->width, 2, o->depth, o->leaky_slope, &r, &model->params, "f");
     if (s == NEUV_OK)
         s = param_mlp_create(&model->g, 2, d.psi_dim, o->width, 3, o->depth, o->leaky_slope, &r, &model->params, "g");
-    if (s != NEUV_OK) goto done;
     model->psi_mode = o->psi_mode;
+    if (s == NEUV_OK && o->init) s = copy_weights(o->init, model, d.psi_dim);
+    if (s != NEUV_OK) goto done;
     model->psi_dim = d.psi_dim;
     model->n_charts = n_charts;
     rep->parameters = 0;
@@ -558,6 +639,8 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     rep->setup_seconds = t1 - t0;
 
     int pooled = o->psi_mode == PARAM_PSI_POOLED;
+    rng noise;
+    rng_seed(&noise, o->seed ^ 0x5eedf00dull);
     double window_sum = 0, prev_window = INFINITY;
     int it;
     for (it = 0; it < o->iters; it++) {
@@ -565,6 +648,13 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         nn_ctx_reset(ctx);
         nn_tensor *x = nn_from(ctx, b.np, 3, b.x);
         nn_tensor *psi = pooled ? nn_view(ctx, n_charts, d.psi_dim, d.psi) : nn_from(ctx, b.np, d.psi_dim, b.feat);
+        if (pooled && o->psi_noise > 0) {
+            psi = nn_from(ctx, n_charts, d.psi_dim, d.psi);
+            /* Standardized columns have standard deviation 1/sqrt(dim). */
+            double sd = o->psi_noise / sqrt((double)d.psi_dim);
+            if (psi)
+                for (long k = 0; k < (long)n_charts * d.psi_dim; k++) psi->data[k] += (float)(sd * rng_normal(&noise));
+        }
         const int *row = pooled ? b.row : NULL;
         nn_tensor *uv = param_mlp_forward(ctx, &model->f, x, psi, row);
         nn_tensor *xr = param_mlp_forward(ctx, &model->g, uv, psi, row);
@@ -621,37 +711,16 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     rep->train_seconds = now_seconds() - t1;
 
     /* Final map at the vertices, oriented counter-clockwise per chart. */
-    nn_ctx_reset(ctx);
-    {
-        nn_tensor *x = nn_from(ctx, d.nv, 3, d.x);
-        nn_tensor *psi = pooled ? nn_view(ctx, n_charts, d.psi_dim, d.psi) : nn_from(ctx, d.nv, d.psi_dim, d.feat);
-        nn_tensor *uv = param_mlp_forward(ctx, &model->f, x, psi, pooled ? d.vchart : NULL);
-        nn_tensor *xr = param_mlp_forward(ctx, &model->g, uv, psi, pooled ? d.vchart : NULL);
-        if (!uv || !xr) { s = nn_ctx_status(ctx); goto done; }
-        double cyc = 0;
-        for (long i = 0; i < (long)d.nv * 3; i++) cyc += (double)(xr->data[i] - x->data[i]) * (xr->data[i] - x->data[i]);
-        rep->cycle_rms = sqrt(cyc / d.nv);
-        chart_orientation(&d, uv->data, b.chart_sum, b.orient);
-        model->center = d.center; d.center = NULL;
-        model->scale = d.scale; d.scale = NULL;
-        model->rot = d.rot; d.rot = NULL;
-        model->psi = d.psi; d.psi = NULL;
-        model->mirror = malloc((size_t)n_charts * sizeof(int));
-        if (!model->mirror) { s = neuv_fail_nomem("chart orientation"); goto done; }
-        for (int c = 0; c < n_charts; c++) model->mirror[c] = b.chart_sum[c] < 0;
-        rep->flipped = 0;
-        for (int f = 0; f < d.nf; f++) {
-            double a = face_area_uv(uv->data, d.tri + 3 * f) * b.orient[f];
-            if (a <= 0) rep->flipped++;
-            int c = d.fchart[f], mf = d.fmesh[f];
-            double sc = model->scale[c], sign = model->mirror[c] ? -1 : 1;
-            for (int k = 0; k < 3; k++) {
-                const float *p = uv->data + 2 * d.tri[3 * f + k];
-                corner_uv[6 * mf + 2 * k] = sign * p[0] / sc;
-                corner_uv[6 * mf + 2 * k + 1] = p[1] / sc;
-            }
-        }
-    }
+    model->mirror = malloc((size_t)n_charts * sizeof(int));
+    if (!model->mirror) { s = neuv_fail_nomem("chart orientation"); goto done; }
+    s = map_vertices(ctx, model, &d, model->mirror, corner_uv, &rep->flipped, &rep->cycle_rms);
+    if (s != NEUV_OK) goto done;
+    model->center = d.center; d.center = NULL;
+    model->scale = d.scale; d.scale = NULL;
+    model->rot = d.rot; d.rot = NULL;
+    model->psi = d.psi; d.psi = NULL;
+    model->psi_shift = d.shift; d.shift = NULL;
+    model->psi_mul = d.mul; d.mul = NULL;
     s = NEUV_OK;
 done:
     nn_ctx_free(ctx);
@@ -660,6 +729,43 @@ done:
     train_data_free(&d);
     if (s == NEUV_OK && o->keep_model) rep->model = model;
     else param_net_model_free(model);
+    rep->seconds = now_seconds() - t0;
+    return s;
+}
+
+neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, const int *face_chart, int n_charts,
+                            const float *vertex_features, int feature_dim, double *corner_uv, param_net_report *rep)
+{
+    param_net_report local;
+    if (!rep) rep = &local;
+    memset(rep, 0, sizeof *rep);
+    if (!model || !model->psi_shift || !model->psi_mul || model->psi_mode != PARAM_PSI_POOLED)
+        return neuv_fail(NEUV_ERR_INPUT, "this parameterization model holds no ψ standardization: it can only map "
+                                         "the charts it was trained on");
+    int want = vertex_features ? 2 * feature_dim : 6;
+    if (want != model->psi_dim)
+        return neuv_fail(NEUV_ERR_INPUT, "the model's ψ has %d numbers, these charts' features give %d", model->psi_dim,
+                         want);
+    param_net_options o;
+    param_net_default_options(&o, PARAM_PRESET_FAST);
+    o.width = model->f.width;
+    o.depth = model->f.depth;
+    neuv_status s = check_input(m, face_chart, n_charts, vertex_features, feature_dim, &o, corner_uv);
+    if (s != NEUV_OK) return s;
+    double t0 = now_seconds();
+    train_data d;
+    nn_ctx *ctx = NULL;
+    int *mirror = malloc((size_t)n_charts * sizeof(int));
+    if (!mirror) return neuv_fail_nomem("chart orientation");
+    s = train_data_build(m, face_chart, n_charts, vertex_features, feature_dim, &o, model, 1, &d);
+    if (s == NEUV_OK) {
+        ctx = nn_ctx_create(0);
+        if (!ctx) s = neuv_fail_nomem("parameterization inference");
+    }
+    if (s == NEUV_OK) s = map_vertices(ctx, model, &d, mirror, corner_uv, &rep->flipped, &rep->cycle_rms);
+    nn_ctx_free(ctx);
+    train_data_free(&d);
+    free(mirror);
     rep->seconds = now_seconds() - t0;
     return s;
 }

@@ -64,6 +64,14 @@ typedef struct param_net_options {
     uint64_t seed;
     int threads;            /* > 0: nn_set_threads(threads) before training; 0: leave as is */
     int keep_model;         /* 1: the trained model is returned in report->model */
+    /* Fine-tuning: start from this model's weights and ψ standardization
+     * (same width, depth and ψ size) instead of a random initialization. */
+    const param_net_model *init;
+    /* Category training (pooled ψ): every step adds Gaussian noise of this
+     * many column standard deviations to every chart's standardized ψ, so
+     * the networks learn maps that vary smoothly with ψ instead of one map
+     * per training code (0: off, per-shape training). */
+    double psi_noise;
 } param_net_options;
 
 typedef struct param_net_report {
@@ -113,9 +121,26 @@ struct param_net_model {
     double *scale;          /* n_charts: normalized = R (x − center) scale */
     double *rot;            /* n_charts by 3 by 3: R, rows x, y (tangent, principal axis first), z (mean normal) */
     int *mirror;            /* n_charts: 1 when u was negated to make the chart counter-clockwise */
+    /* ψ standardization of training (psi_dim each: standardized = (raw − shift)·mul),
+     * so that charts the model never saw get codes on the same scale; NULL in
+     * models saved before it was kept (they map only their own charts). */
+    double *psi_shift, *psi_mul;
 };
 
 void param_net_model_free(param_net_model *model);
+
+/* Maps the charts of a mesh the model was not trained on (a category model,
+ * issue 8): each chart is normalized as in training (centre, geodesic
+ * radius, frame), its ψ pooled from vertex_features and standardized with
+ * the model's psi_shift / psi_mul, and MLP_f evaluated at its vertices; each
+ * chart is then turned counter-clockwise.
+ * Inputs:  as param_net_flatten (vertex_features: the same kind as in training)
+ * Outputs: corner_uv #F by 3 by 2, as param_net_flatten; rep (may be NULL):
+ *          flipped, cycle_rms, seconds
+ * Returns NEUV_OK, NEUV_ERR_INPUT (no standardization in the model, ψ size
+ * mismatch, bad charts), NEUV_ERR_NOMEM or NEUV_ERR_INTERNAL. */
+neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, const int *face_chart, int n_charts,
+                            const float *vertex_features, int feature_dim, double *corner_uv, param_net_report *rep);
 
 /* UVs of surface points of chart `chart_id` by inference (pooled ψ only: a
  * per-vertex model needs each point's features).

@@ -11,6 +11,7 @@ void param_net_model_free(param_net_model *model)
     param_mlp_free(&model->g);
     nn_params_free(&model->params);
     free(model->psi); free(model->center); free(model->scale); free(model->rot); free(model->mirror);
+    free(model->psi_shift); free(model->psi_mul);
     free(model);
 }
 

@@ -161,59 +161,105 @@ static nn_tensor *patchnet_forward(nn_ctx *ctx, const patchnet_model *model, con
     return nn_softmax_rows(ctx, diffusion_net_vertices_to_faces(ctx, g, v));
 }
 
+/* What training needs of one shape: its DiffusionNet geometry, input
+ * features, loss constants and the L_geo source distances. */
+typedef struct train_shape {
+    const neuv_mesh *m;
+    diffusion_net_geometry g;
+    int g_ready;
+    float *x, *area, *normal, *dist;
+    int *src, S, dim;
+} train_shape;
+
+static void train_shape_free(train_shape *t)
+{
+    if (t->g_ready) diffusion_net_geometry_free(&t->g);
+    free(t->x); free(t->area); free(t->normal); free(t->dist); free(t->src);
+    memset(t, 0, sizeof *t);
+}
+
+static neuv_status train_shape_init(train_shape *t, const patchnet_model *model, const neuv_mesh *m,
+                                    const operators *ops, const patchnet_options *o, uint64_t seed)
+{
+    memset(t, 0, sizeof *t);
+    if (!m || !ops || m->nf < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: mesh has no faces");
+    t->m = m;
+    int nf = m->nf;
+    t->S = o->geo_sources < 1 ? 128 : o->geo_sources;
+    if (t->S > nf) t->S = nf;
+    neuv_status st = diffusion_net_geometry_create(m, ops, model->k_eig, &t->g);
+    if (st) return st;
+    t->g_ready = 1;
+    if ((st = diffusion_net_input_features(m, ops, model->features, &t->x, &t->dim))) return st;
+    if (t->dim != model->in_dim)
+        return neuv_fail(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim,
+                         t->dim);
+    if ((st = face_area_normal(m, &t->area, &t->normal))) return st;
+    t->src = malloc(sizeof(int) * (size_t)t->S);
+    t->dist = malloc(sizeof(float) * (size_t)t->S * nf);
+    if (!t->src || !t->dist) return neuv_fail_nomem("PatchNet training");
+    if ((st = sample_sources(nf, t->S, seed, t->src))) return st;
+    return source_distances(m, t->src, t->S, t->dist);
+}
+
 neuv_status patchnet_train(patchnet_model *model, const neuv_mesh *m, const operators *ops,
                            const patchnet_options *o, patchnet_report *rep)
 {
+    const neuv_mesh *ms[1] = {m};
+    const operators *os[1] = {ops};
+    return patchnet_train_shapes(model, ms, os, 1, o, rep);
+}
+
+neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const *meshes,
+                                  const operators *const *ops, int n_shapes, const patchnet_options *o,
+                                  patchnet_report *rep)
+{
     patchnet_options def;
     if (!o) { patchnet_default_options(&def); o = &def; }
-    if (!m || m->nf < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: mesh has no faces");
-    int nf = m->nf, nv = m->nv;
-    int S = o->geo_sources < 1 ? 128 : o->geo_sources;
-    if (S > nf) S = nf;
-    diffusion_net_geometry g;
-    neuv_status st = diffusion_net_geometry_create(m, ops, model->k_eig, &g);
-    if (st) return st;
-    float *x = NULL, *area = NULL, *normal = NULL, *dist = NULL;
-    int *src = NULL, dim = 0;
+    if (n_shapes < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: no shapes to train on");
+    train_shape *sh = calloc((size_t)n_shapes, sizeof *sh);
+    if (!sh) return neuv_fail_nomem("PatchNet training");
+    neuv_status st = NEUV_OK;
     nn_ctx *ctx = NULL;
     nn_adam adam;
     int adam_ready = 0;
     double *hist = NULL;
-    if ((st = diffusion_net_input_features(m, ops, model->features, &x, &dim))) goto done;
-    if (dim != model->in_dim) {
-        st = neuv_fail(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim, dim);
-        goto done;
-    }
-    if ((st = face_area_normal(m, &area, &normal))) goto done;
-    src = malloc(sizeof(int) * (size_t)S);
-    dist = malloc(sizeof(float) * (size_t)S * nf);
     int iters = o->iters > 0 ? o->iters : 300;
-    hist = malloc(sizeof(double) * (size_t)iters);
-    if (!src || !dist || !hist) { st = neuv_fail_nomem("PatchNet training"); goto done; }
     double t0 = now_seconds();
-    if ((st = sample_sources(nf, S, o->seed, src))) goto done;
-    if ((st = source_distances(m, src, S, dist))) goto done;
+    /* Shape i draws its L_geo sources with seed + i (one shape: the seed itself). */
+    for (int i = 0; i < n_shapes && !st; i++) {
+        st = train_shape_init(&sh[i], model, meshes[i], ops[i], o, o->seed + (uint64_t)i);
+        if (n_shapes > 1) neuv_progress("patches", 0, "geodesics of shape %d of %d", i + 1, n_shapes);
+    }
+    if (st) goto done;
     double t_geo = now_seconds() - t0;
+    hist = malloc(sizeof(double) * (size_t)iters);
+    if (!hist) { st = neuv_fail_nomem("PatchNet training"); goto done; }
     nn_adam_config acfg = nn_adam_defaults();
     acfg.lr = o->lr > 0 ? o->lr : 1e-3f;
     if ((st = nn_adam_init(&adam, &model->params, &acfg))) goto done;
     adam_ready = 1;
     ctx = nn_ctx_create(0);
     if (!ctx) { st = neuv_fail_nomem("PatchNet arena"); goto done; }
+    /* The plateau windows hold whole rounds over the shapes, whose losses differ. */
     int W = o->plateau_window > 0 ? o->plateau_window : 25;
+    W = (W + n_shapes - 1) / n_shapes * n_shapes;
     double t1 = now_seconds();
     int it = 0, plateaued = 0;
     double lc = 0, lg = 0;
     for (it = 0; it < iters; it++) {
+        /* One shape per step, in turn: every step is one shape's full loss. */
+        const train_shape *t = &sh[it % n_shapes];
+        int nf = t->m->nf;
         nn_ctx_reset(ctx);
         diffusion_net_clamp_times(&model->net);
-        nn_tensor *xin = nn_view(ctx, nv, dim, x);
-        nn_tensor *a = nn_view(ctx, nf, 1, area);
-        nn_tensor *n = nn_view(ctx, nf, 3, normal);
-        nn_tensor *D = nn_view(ctx, S, nf, dist);
-        nn_tensor *P = patchnet_forward(ctx, model, &g, xin, NULL);
+        nn_tensor *xin = nn_view(ctx, t->m->nv, t->dim, t->x);
+        nn_tensor *a = nn_view(ctx, nf, 1, t->area);
+        nn_tensor *n = nn_view(ctx, nf, 3, t->normal);
+        nn_tensor *D = nn_view(ctx, t->S, nf, t->dist);
+        nn_tensor *P = patchnet_forward(ctx, model, &t->g, xin, NULL);
         nn_tensor *Lc = patch_loss_cos(ctx, P, a, n);
-        nn_tensor *Lg = patch_loss_geo(ctx, P, a, src, S, D);
+        nn_tensor *Lg = patch_loss_geo(ctx, P, a, t->src, t->S, D);
         nn_tensor *L = nn_add(ctx, Lc, Lg);
         nn_params_zero_grad(&model->params);
         if ((st = nn_backward(ctx, L))) goto done;
@@ -249,8 +295,9 @@ neuv_status patchnet_train(patchnet_model *model, const neuv_mesh *m, const oper
 done:
     if (ctx) nn_ctx_free(ctx);
     if (adam_ready) nn_adam_free(&adam);
-    diffusion_net_geometry_free(&g);
-    free(x); free(area); free(normal); free(dist); free(src); free(hist);
+    for (int i = 0; i < n_shapes; i++) train_shape_free(&sh[i]);
+    free(sh);
+    free(hist);
     return st;
 }
 
@@ -536,6 +583,34 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
     return st;
 }
 
+neuv_status patchnet_charts_from_model(const patchnet_model *model, const neuv_mesh *m, const operators *ops,
+                                      const patchnet_options *o, int *face_chart, int *n_charts,
+                                      float **vertex_features, int *feature_dim, patchnet_report *rep)
+{
+    patchnet_options def;
+    if (!o) { patchnet_default_options(&def); o = &def; }
+    if (vertex_features) *vertex_features = NULL;
+    if (feature_dim) *feature_dim = 0;
+    patchnet_report local;
+    if (!rep) { rep = &local; memset(rep, 0, sizeof *rep); }
+    int *label = malloc(sizeof(int) * (size_t)m->nf);
+    if (!label) return neuv_fail_nomem("patch labels");
+    neuv_status st = patchnet_infer_features(model, m, ops, label, vertex_features, feature_dim);
+    if (!st) {
+        charts_options copt;
+        charts_default_options(&copt);
+        if (o->min_area_share > 0) copt.min_area_share = o->min_area_share;
+        st = charts_from_labels(m, label, &copt, face_chart, n_charts, NULL);
+    }
+    if (!st) {
+        rep->label_charts = *n_charts;
+        st = refine_charts(m, o, face_chart, n_charts, rep);
+    }
+    free(label);
+    if (st && vertex_features) { free(*vertex_features); *vertex_features = NULL; }
+    return st;
+}
+
 neuv_status patchnet_segment_model(const neuv_mesh *m, const operators *ops, const patchnet_options *o,
                                    int *face_chart, int *n_charts, float **vertex_features, int *feature_dim,
                                    patchnet_report *rep, patchnet_model *model_out)
@@ -559,20 +634,12 @@ neuv_status patchnet_segment_model(const neuv_mesh *m, const operators *ops, con
     if (st) return st;
     patchnet_model model;
     if ((st = patchnet_model_create(&model, o, dim, k))) return st;
-    int *label = malloc(sizeof(int) * (size_t)m->nf);
-    if (!label) { patchnet_model_free(&model); return neuv_fail_nomem("patch labels"); }
     if ((st = patchnet_train(&model, m, ops, o, rep))) goto done;
-    if ((st = patchnet_infer_features(&model, m, ops, label, vertex_features, feature_dim))) goto done;
-    charts_options copt;
-    charts_default_options(&copt);
-    if (o->min_area_share > 0) copt.min_area_share = o->min_area_share;
-    if ((st = charts_from_labels(m, label, &copt, face_chart, n_charts, NULL))) goto done;
-    rep->label_charts = *n_charts;
-    if ((st = refine_charts(m, o, face_chart, n_charts, rep))) goto done;
+    if ((st = patchnet_charts_from_model(&model, m, ops, o, face_chart, n_charts, vertex_features, feature_dim,
+                                         rep)))
+        goto done;
     rep->seconds = now_seconds() - t0;
 done:
-    free(label);
-    if (st && vertex_features) { free(*vertex_features); *vertex_features = NULL; }
     if (!st && model_out) *model_out = model;
     else patchnet_model_free(&model);
     return st;

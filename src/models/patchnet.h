@@ -93,6 +93,17 @@ void patchnet_model_free(patchnet_model *model);
 neuv_status patchnet_train(patchnet_model *model, const neuv_mesh *m, const operators *ops,
                            const patchnet_options *o, patchnet_report *rep);
 
+/* Trains one model on several shapes at once (a category model, issue 8):
+ * shared weights and K; each step takes the next shape in turn and its whole
+ * L_cos + L_geo (each shape's own operators, features and geodesic sources,
+ * shape i drawing its sources with seed + i); the plateau windows hold whole
+ * rounds over the shapes. One shape is exactly patchnet_train.
+ * Inputs:  meshes[n_shapes] (cleaned), ops[n_shapes], o
+ * Outputs: model trained in place; rep (may be NULL) */
+neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const *meshes,
+                                  const operators *const *ops, int n_shapes, const patchnet_options *o,
+                                  patchnet_report *rep);
+
 /* Per-face argmax patch of a (trained) model on any mesh with operators.
  * Inputs:  model, m, ops
  * Outputs: face_label #F (caller allocates) in 0..k-1 */
@@ -121,6 +132,13 @@ neuv_status patchnet_segment(const neuv_mesh *m, const operators *ops, const pat
 neuv_status patchnet_segment_model(const neuv_mesh *m, const operators *ops, const patchnet_options *o,
                                    int *face_chart, int *n_charts, float **vertex_features, int *feature_dim,
                                    patchnet_report *rep, patchnet_model *model_out);
+
+/* The chart half of patchnet_segment with a trained model (inference only):
+ * argmax, charts_from_labels, and for auto K (o->charts = 0) the split and
+ * merge loop. Outputs as patchnet_segment; rep's chart fields are filled. */
+neuv_status patchnet_charts_from_model(const patchnet_model *model, const neuv_mesh *m, const operators *ops,
+                                      const patchnet_options *o, int *face_chart, int *n_charts,
+                                      float **vertex_features, int *feature_dim, patchnet_report *rep);
 
 /* LSCM quality of one chart: flattens chart `id` alone and measures it.
  * Outputs: qce_mean (INFINITY when LSCM fails), flipped faces. */
