@@ -2,6 +2,7 @@
 #include "check.h"
 
 #include "mesh/edge_map.h"
+#include "mesh/shape_family.h"
 #include "mesh/shapes.h"
 #include "mesh/signed_volume.h"
 #include "mesh/topology.h"
@@ -166,6 +167,48 @@ int main(void)
         /* outer 2(15 + 5 + 3) + hole walls 2 * 4 */
         CHECK_NEAR(mesh_total_area(m), 2 * (15 - 2) + 2 * (5 + 3) + 8, 1e-9);
         mesh_free(m);
+    }
+
+    /* The bent-capsule family: every member a closed, outward-oriented
+     * genus-0 manifold; bending about a circle keeps area and volume (the
+     * stretch (R - x) / R averages to 1 over a cross-section symmetric in x),
+     * up to the straight triangles; no bend, bulge or scale is the capsule. */
+    {
+        capsule_params p = {0.5, 1.0, 0, 0, 1, 48, 12};
+        neuv_mesh *straight = shape_bent_capsule(&p), *plain = shape_capsule(0.5, 1.0, 48, 12);
+        CHECK(straight && plain && straight->nv == plain->nv);
+        CHECK(memcmp(straight->pos, plain->pos, sizeof(double) * 3 * (size_t)plain->nv) == 0);
+        p.bend = 1.2;
+        neuv_mesh *bent = shape_bent_capsule(&p);
+        double a0 = mesh_total_area(straight), v0 = mesh_signed_volume(straight, NULL, 0);
+        printf("bent capsule: area %.5f vs %.5f, volume %.5f vs %.5f\n", mesh_total_area(bent), a0,
+               mesh_signed_volume(bent, NULL, 0), v0);
+        CHECK_NEAR(mesh_total_area(bent), a0, 0.005 * a0);
+        CHECK_NEAR(mesh_signed_volume(bent, NULL, 0), v0, 0.005 * v0);
+        /* The top pole (arc length 1 from the middle) lands on the bend
+         * circle of radius 2 / 1.2 at angle 1 / R. */
+        int top = 0;
+        for (int v = 0; v < straight->nv; v++)
+            if (straight->pos[3 * v + 2] > straight->pos[3 * top + 2]) top = v;
+        double R = 2.0 / 1.2;
+        CHECK_NEAR(bent->pos[3 * top], R - R * cos(1.0 / R), 1e-12);
+        CHECK_NEAR(bent->pos[3 * top + 2], R * sin(1.0 / R), 1e-12);
+        mesh_free(straight); mesh_free(plain); mesh_free(bent);
+        for (int i = 0; i < 25; i++) {
+            capsule_family_params((uint64_t)i, &p);
+            CHECK(p.radius >= 0.3 && p.radius <= 0.55 && p.length >= 0.8 && p.length <= 2.5);
+            CHECK(p.bend >= 0 && p.bend <= 1.5 && p.size >= 0.5 && p.size <= 2 && p.slices >= 20 && p.slices <= 32);
+            m = shape_capsule_family((uint64_t)i);
+            CHECK(m != NULL);
+            if (!m) continue;
+            t = topo(m);
+            CHECK_INT(t.genus, 0); CHECK(t.closed);
+            CHECK(oriented_manifold(m, 1)); CHECK(min_area_positive(m));
+            CHECK(mesh_signed_volume(m, NULL, 0) > 0);
+            mesh_free(m);
+        }
+        p.radius = -1;
+        CHECK(shape_bent_capsule(&p) == NULL);
     }
 
     CHECK(shape_icosphere(-1, 1) == NULL);

@@ -112,14 +112,14 @@ int cmd_unwrap(int argc, char **argv)
     if (job.train_faces < 0) return cli_error(NULL, "--train-faces must be 0 (never simplify) or a face count");
     if (job.train_faces > 0 && job.train_faces < 500)
         return cli_error(NULL, "--train-faces must be at least 500 (or 0 to train on the full mesh)");
-    if (finetune < 0) return cli_error(NULL, "--finetune must be non-negative");
-    if (finetune > 0)
-        return cli_error(job.model, "--finetune is not available yet: models are applied by inference only "
-                                    "(use --finetune 0 or leave it out)");
+    if (finetune < 0 || finetune > 1000000) return cli_error(NULL, "--finetune must be a step count in 0..1000000");
+    if (finetune > 0 && !job.model) return cli_error(NULL, "--finetune needs --model");
+    job.finetune = finetune;
     if (!job.model && job.check_inference) return cli_error(NULL, "--check-inference needs --model");
-    if (job.model && (method || preset || charts || o.iters || seed >= 0 || refine >= 0))
-        return cli_error(job.model, "--model applies a saved model: --method, --preset, --charts, --iters, --refine and --seed "
+    if (job.model && (method || preset || charts || o.iters || seed >= 0))
+        return cli_error(job.model, "--model applies a saved model: --method, --preset, --charts, --iters and --seed "
                                     "come from the model");
+    job.refine = job.model ? refine : -1;
     if (color && parse_preview_color(color, &job.preview_color)) return 2;
 
     char *owned_output = NULL;

@@ -18,5 +18,7 @@ int cmd_demo(int argc, char **argv);
 int parse_preview_color(const char *s, int *out);
 int cmd_remesh(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+int cmd_train(int argc, char **argv);
+int cmd_shape(int argc, char **argv);
 
 #endif

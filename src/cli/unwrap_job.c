@@ -6,6 +6,7 @@
 #include "atlas/preview.h"
 #include "cli/cli.h"
 #include "core/atomic_file.h"
+#include "core/error.h"
 #include "core/timer.h"
 #include "unwrap/unwrap_apply.h"
 #include "unwrap/unwrap_internal.h"
@@ -30,12 +31,27 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
         unwrap_model *md = NULL;
         s = unwrap_model_load(job->model, &md);
         if (s != NEUV_OK) return cli_fail(job->model, s);
-        unwrap_apply_options ao = {opts->threads, opts->use_cache, job->check_inference};
-        s = unwrap_apply(mesh, md, &ao, &r);
-        if (s == NEUV_OK && job->save_model) s = unwrap_model_save(md, job->save_model);
+        const char *what = job->input_name;
+        if (md->category) {
+            if (job->refine >= 0) md->refine = job->refine;
+            if (job->check_inference) {
+                s = neuv_fail(NEUV_ERR_INPUT, "--check-inference needs a surface model, not a category model");
+                what = job->model;
+            } else s = unwrap_with_category(mesh, md, opts, job->finetune, &r);
+        } else if (job->finetune > 0 || job->refine >= 0) {
+            s = neuv_fail(NEUV_ERR_INPUT, "a surface model is applied by inference only: --finetune and --refine "
+                                          "apply to category models (neuv train)");
+            what = job->model;
+        } else {
+            unwrap_apply_options ao = {opts->threads, opts->use_cache, job->check_inference};
+            s = unwrap_apply(mesh, md, &ao, &r);
+        }
+        if (s == NEUV_OK && job->save_model) {
+            s = unwrap_model_save(md, job->save_model);
+            what = job->save_model;
+        }
         unwrap_model_free(md);
         if (s != NEUV_OK) {
-            const char *what = r ? job->save_model : job->input_name;
             neuv_unwrap_result_free(r);
             return cli_fail(what, s);
         }

@@ -21,6 +21,7 @@
 #include "models/patchnet.h"
 #include "nn/nn.h"
 #include "unwrap/chart_uv_check.h"
+#include "unwrap/unwrap_model.h"
 
 void neuv_unwrap_options_default(neuv_unwrap_options *o)
 {
@@ -283,7 +284,11 @@ neuv_status unwrap_metrics(const neuv_mesh *m, uv_metrics *out)
     return s;
 }
 
-static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model)
+/* category: a category model (unwrap_category.h) whose PatchNet and
+ * parameterization networks replace training (finetune > 0: the networks
+ * train that many steps from the model's weights); NULL: train on this mesh. */
+static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model,
+                                const unwrap_model *category, int finetune)
 {
     const neuv_unwrap_options *o = &r->opts;
     double t = now_seconds(), t_start = t;
@@ -323,16 +328,24 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     int feature_dim = 0;
     patchnet_report prep;
     memset(&prep, 0, sizeof prep);
-    if (keep_model) {
+    if (category) {
+        po.charts = category->charts_auto ? 0 : category->patchnet->k;
+        po.max_distortion = category->max_distortion;
+        s = patchnet_charts_from_model(category->patchnet, m, &ops, &po, r->face_chart, &r->n_charts, &features,
+                                       &feature_dim, &prep);
+        prep.k = category->patchnet->k;
+    } else if (keep_model) {
         r->patchnet = calloc(1, sizeof *r->patchnet);
         r->face_label = malloc(sizeof(int) * (size_t)m->nf);
         if (!r->patchnet || !r->face_label) { operators_free(&ops); return neuv_fail_nomem("the model"); }
     }
-    s = patchnet_segment_model(m, &ops, &po, r->face_chart, &r->n_charts, &features, &feature_dim, &prep,
-                               r->patchnet);
-    /* The argmax labels of the source are kept so that a later --check-inference
-     * can measure PatchNet inference on another triangulation against them. */
-    if (s == NEUV_OK && keep_model) s = patchnet_infer(r->patchnet, m, &ops, r->face_label);
+    if (!category) {
+        s = patchnet_segment_model(m, &ops, &po, r->face_chart, &r->n_charts, &features, &feature_dim, &prep,
+                                   r->patchnet);
+        /* The argmax labels of the source are kept so that a later --check-inference
+         * can measure PatchNet inference on another triangulation against them. */
+        if (s == NEUV_OK && keep_model) s = patchnet_infer(r->patchnet, m, &ops, r->face_label);
+    }
     operators_free(&ops);
     r->seconds[STAGE_PATCHES] = now_seconds() - t;
     r->patches = prep.k;
@@ -352,7 +365,15 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
         if (o->iters > 0) pp.iters = o->iters;
         param_net_report pr;
         memset(&pr, 0, sizeof pr);
-        s = param_net_flatten(m, r->face_chart, r->n_charts, features, feature_dim, &pp, corner_uv, &pr);
+        if (category) {
+            pp.width = category->param->f.width;
+            pp.depth = category->param->f.depth;
+            pp.init = category->param;
+            pp.iters = pp.min_iters = finetune;
+        }
+        if (category && finetune == 0)
+            s = param_net_infer(category->param, m, r->face_chart, r->n_charts, features, feature_dim, corner_uv, &pr);
+        else s = param_net_flatten(m, r->face_chart, r->n_charts, features, feature_dim, &pp, corner_uv, &pr);
         r->param_iterations = pr.iters;
         r->param_loss = pr.loss;
         r->param = pr.model;
@@ -418,8 +439,43 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
         { free(r); return neuv_fail(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
     if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;
-    neuv_status s = run_pipeline(r, mesh, keep_model);
+    neuv_status s = run_pipeline(r, mesh, keep_model, NULL, 0);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
+    *out = r;
+    return NEUV_OK;
+}
+
+neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *category, const neuv_unwrap_options *opts,
+                                 int finetune, neuv_unwrap_result **out)
+{
+    *out = NULL;
+    if (!mesh || mesh->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
+    if (!category || !category->category || !category->patchnet || !category->param)
+        return neuv_fail(NEUV_ERR_INPUT, "not a category model");
+    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
+    if (!r) return neuv_fail_nomem("the result");
+    neuv_unwrap_options_default(&r->opts);
+    r->opts.method = NEUV_METHOD_NEURAL;
+    r->opts.preset = category->preset;
+    r->opts.seed = category->seed;
+    r->opts.refine = category->refine;
+    r->opts.resolution = category->resolution;
+    r->opts.padding = category->padding;
+    r->opts.max_distortion = category->max_distortion;
+    if (opts) {
+        r->opts.threads = opts->threads;
+        r->opts.use_cache = opts->use_cache;
+        r->opts.allow_overlaps = opts->allow_overlaps;
+    }
+    if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
+    r->model.label_agreement = -1;
+    r->model.used = 1;
+    r->model.category = 1;
+    r->model.finetune = finetune;
+    neuv_status s = run_pipeline(r, mesh, 0, category, finetune);
+    if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
+    r->model.network_charts = r->neural_charts;
+    r->model.inference_seconds = r->total_seconds - r->seconds[STAGE_METRICS];
     *out = r;
     return NEUV_OK;
 }

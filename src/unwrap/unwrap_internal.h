@@ -66,6 +66,8 @@ struct neuv_unwrap_result {
         double surface_distance;  /* largest face-centroid distance to the source surface / its bbox diagonal */
         double inference_seconds; /* from the cleaned mesh to the packed atlas (no metrics) */
         double label_agreement;   /* -1, or PatchNet inference vs stored labels (--check-inference) */
+        int category;             /* 1: a category model unwrapped this (unseen) shape */
+        int finetune;             /* category: training steps from the model's weights (0: inference only) */
     } model;
 };
 
@@ -103,5 +105,15 @@ neuv_status unwrap_metrics(const neuv_mesh *m, uv_metrics *out);
  * (chart_net, chart_mirrored, face_label, patchnet, param) for a saved model. */
 neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts, int keep_model,
                          neuv_unwrap_result **out);
+
+/* The pipeline on a shape a category model (unwrap_model.h, category = 1)
+ * was not trained on: PatchNet charts and the networks' map by inference
+ * (param_net_infer), or with finetune > 0 that many training steps from the
+ * model's weights; then the same repair, refinement, packing and metrics.
+ * Preset, seed, refinement, resolution and padding come from the model;
+ * threads, use_cache and allow_overlaps from opts (may be NULL). */
+struct unwrap_model;
+neuv_status unwrap_with_category(const neuv_mesh *mesh, const struct unwrap_model *category,
+                                 const neuv_unwrap_options *opts, int finetune, neuv_unwrap_result **out);
 
 #endif

@@ -148,21 +148,29 @@ static char *header_json(const unwrap_model *m)
     json_key(&w, "format"); json_string(&w, FORMAT_NAME);
     json_key(&w, "model_version"); json_int(&w, UNWRAP_MODEL_VERSION);
     json_key(&w, "neuv_version"); json_string(&w, neuv_version());
+    json_key(&w, "kind"); json_string(&w, m->category ? "category" : "surface");
     json_key(&w, "method"); json_string(&w, method_key(m->method));
     json_key(&w, "preset"); json_string(&w, m->preset == NEUV_PRESET_PAPER ? "paper" : "fast");
     json_key(&w, "seed"); json_int(&w, (long long)m->seed);
     json_key(&w, "refine"); json_int(&w, m->refine);
     json_key(&w, "resolution"); json_int(&w, m->resolution);
     json_key(&w, "padding"); json_int(&w, m->padding);
-    json_key(&w, "charts"); json_int(&w, m->n_charts);
-    json_key(&w, "source_vertices"); json_int(&w, m->source->nv);
-    json_key(&w, "source_faces"); json_int(&w, m->source->nf);
-    json_key(&w, "source_uvs"); json_int(&w, m->source->nuv);
-    json_key(&w, "source_labels"); json_int(&w, m->face_label != NULL);
+    if (m->category) {
+        json_key(&w, "category_shapes"); json_int(&w, m->category_shapes);
+        json_key(&w, "charts_auto"); json_int(&w, m->charts_auto);
+        json_key(&w, "max_distortion"); json_number(&w, m->max_distortion);
+    } else {
+        json_key(&w, "charts"); json_int(&w, m->n_charts);
+        json_key(&w, "source_vertices"); json_int(&w, m->source->nv);
+        json_key(&w, "source_faces"); json_int(&w, m->source->nf);
+        json_key(&w, "source_uvs"); json_int(&w, m->source->nuv);
+        json_key(&w, "source_labels"); json_int(&w, m->face_label != NULL);
+    }
     json_key(&w, "param"); json_int(&w, m->param != NULL);
     if (m->param) {
         const param_net_model *p = m->param;
-        json_key(&w, "param_charts"); json_int(&w, p->n_charts);
+        json_key(&w, "param_charts"); json_int(&w, m->category ? 0 : p->n_charts);
+        json_key(&w, "param_psi_norm"); json_int(&w, p->psi_shift != NULL);
         json_key(&w, "param_psi_dim"); json_int(&w, p->psi_dim);
         json_key(&w, "param_width"); json_int(&w, p->f.width);
         json_key(&w, "param_depth"); json_int(&w, p->f.depth);
@@ -184,19 +192,18 @@ static char *header_json(const unwrap_model *m)
     return w.buf;
 }
 
-neuv_status unwrap_model_save(const unwrap_model *m, const char *path)
+/* The source surface, its charts and the per-chart frames of a surface model. */
+static int push_surface(tensor_list *l, const unwrap_model *m)
 {
-    tensor_list l;
-    memset(&l, 0, sizeof l);
     const neuv_mesh *s = m->source;
     int nc = m->n_charts, bad = 0;
-    bad |= push_doubles(&l, "source.pos", s->nv, 3, s->pos);
-    bad |= push_ints(&l, "source.tri", s->nf, 3, s->tri);
-    bad |= push_doubles(&l, "source.uv", s->nuv, 2, s->uv);
-    bad |= push_ints(&l, "source.tri_uv", s->nf, 3, s->tri_uv);
-    bad |= push_ints(&l, "source.chart", s->nf, 1, m->face_chart);
-    if (m->face_label) bad |= push_ints(&l, "source.label", s->nf, 1, m->face_label);
-    bad |= push_doubles(&l, "source.norm", 1, 5, m->norm);
+    bad |= push_doubles(l, "source.pos", s->nv, 3, s->pos);
+    bad |= push_ints(l, "source.tri", s->nf, 3, s->tri);
+    bad |= push_doubles(l, "source.uv", s->nuv, 2, s->uv);
+    bad |= push_ints(l, "source.tri_uv", s->nf, 3, s->tri_uv);
+    bad |= push_ints(l, "source.chart", s->nf, 1, m->face_chart);
+    if (m->face_label) bad |= push_ints(l, "source.label", s->nf, 1, m->face_label);
+    bad |= push_doubles(l, "source.norm", 1, 5, m->norm);
     double *xf = malloc(sizeof(double) * 4 * (size_t)nc);
     int *map = malloc(sizeof(int) * 2 * (size_t)nc);
     if (xf && map) {
@@ -206,8 +213,8 @@ neuv_status unwrap_model_save(const unwrap_model *m, const char *path)
             map[2 * c] = m->chart_net[c];
             map[2 * c + 1] = m->chart_mirrored[c];
         }
-        bad |= push_doubles(&l, "charts.xf", nc, 4, xf);
-        bad |= push_ints(&l, "charts.map", nc, 2, map);
+        bad |= push_doubles(l, "charts.xf", nc, 4, xf);
+        bad |= push_ints(l, "charts.map", nc, 2, map);
     } else bad = 1;
     free(xf);
     free(map);
@@ -220,11 +227,32 @@ neuv_status unwrap_model_save(const unwrap_model *m, const char *path)
                 frame[13 * c + 3] = p->scale[c];
                 memcpy(frame + 13 * c + 4, p->rot + 9 * c, 9 * sizeof(double));
             }
-            bad |= push_doubles(&l, "param.frame", p->n_charts, 13, frame);
+            bad |= push_doubles(l, "param.frame", p->n_charts, 13, frame);
             free(frame);
         } else bad = 1;
-        bad |= push_ints(&l, "param.mirror", p->n_charts, 1, p->mirror);
-        if (!bad) bad |= list_push(&l, "param.psi", p->n_charts, p->psi_dim, p->psi, 0);
+        bad |= push_ints(l, "param.mirror", p->n_charts, 1, p->mirror);
+        if (!bad) bad |= list_push(l, "param.psi", p->n_charts, p->psi_dim, p->psi, 0);
+    }
+    return bad;
+}
+
+neuv_status unwrap_model_save(const unwrap_model *m, const char *path)
+{
+    tensor_list l;
+    memset(&l, 0, sizeof l);
+    int bad = m->category ? 0 : push_surface(&l, m);
+    if (m->param && !bad) {
+        const param_net_model *p = m->param;
+        if (p->psi_shift) {
+            double *norm = malloc(sizeof(double) * 2 * (size_t)p->psi_dim);
+            if (!norm) bad = 1;
+            else {
+                memcpy(norm, p->psi_shift, sizeof(double) * (size_t)p->psi_dim);
+                memcpy(norm + p->psi_dim, p->psi_mul, sizeof(double) * (size_t)p->psi_dim);
+                bad |= push_doubles(&l, "param.psi_norm", 2, p->psi_dim, norm);
+                free(norm);
+            }
+        }
         if (!bad) bad |= push_params(&l, &p->params);
     }
     if (m->patchnet && !bad) bad |= push_params(&l, &m->patchnet->params);
@@ -334,11 +362,32 @@ static neuv_status check_params(const nn_checkpoint *c, nn_params *ps)
     return NEUV_OK;
 }
 
+/* The ψ standardization: required in a category model, optional (newer
+ * files) in a surface model. */
+static neuv_status load_psi_norm(const nn_checkpoint *c, const char *h, int required, param_net_model *p)
+{
+    long long has = 0;
+    neuv_status s;
+    if (header_value(h, "param_psi_norm") && (s = header_int(h, "param_psi_norm", 0, 1, &has))) return s;
+    if (!has) return required ? neuv_fail(NEUV_ERR_INPUT, "category model has no psi standardization") : NEUV_OK;
+    p->psi_shift = malloc(sizeof(double) * (size_t)p->psi_dim);
+    p->psi_mul = malloc(sizeof(double) * (size_t)p->psi_dim);
+    double *norm = malloc(sizeof(double) * 2 * (size_t)p->psi_dim);
+    if (!p->psi_shift || !p->psi_mul || !norm) { free(norm); return neuv_fail_nomem("the model"); }
+    s = read_doubles(c, "param.psi_norm", 2, p->psi_dim, norm);
+    if (s == NEUV_OK) {
+        memcpy(p->psi_shift, norm, sizeof(double) * (size_t)p->psi_dim);
+        memcpy(p->psi_mul, norm + p->psi_dim, sizeof(double) * (size_t)p->psi_dim);
+    }
+    free(norm);
+    return s;
+}
+
 static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_model *m)
 {
     long long nch, psi, width, depth;
     neuv_status s;
-    if ((s = header_int(h, "param_charts", 1, m->n_charts, &nch)) ||
+    if ((s = header_int(h, "param_charts", m->category ? 0 : 1, m->n_charts, &nch)) ||
         (s = header_int(h, "param_psi_dim", 1, 1 << 16, &psi)) ||
         (s = header_int(h, "param_width", 1, 1 << 14, &width)) ||
         (s = header_int(h, "param_depth", 1, 64, &depth)))
@@ -361,8 +410,8 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     p->scale = malloc(sizeof(double) * (size_t)n);
     p->rot = malloc(sizeof(double) * 9 * (size_t)n);
     p->mirror = malloc(sizeof(int) * (size_t)n);
-    double *frame = malloc(sizeof(double) * 13 * (size_t)n);
-    if (!p->psi || !p->center || !p->scale || !p->rot || !p->mirror || !frame) {
+    double *frame = malloc(sizeof(double) * 13 * (size_t)n + 1);
+    if ((n > 0 && (!p->psi || !p->center || !p->scale || !p->rot || !p->mirror)) || !frame) {
         free(frame);
         return neuv_fail_nomem("the model");
     }
@@ -371,6 +420,8 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     s = param_mlp_create(&p->f, 3, (int)psi, (int)width, 2, (int)depth, (float)slope, &r, &p->params, "f");
     if (!s) s = param_mlp_create(&p->g, 2, (int)psi, (int)width, 3, (int)depth, (float)slope, &r, &p->params, "g");
     if (!s) s = check_params(c, &p->params);
+    if (!s) s = load_psi_norm(c, h, m->category, p);
+    if (n == 0) { free(frame); return s; }
     if (!s) s = read_doubles(c, "param.frame", n, 13, frame);
     if (!s) s = read_ints(c, "param.mirror", n, 1, 0, 1, p->mirror);
     const nn_checkpoint_tensor *t;
@@ -413,6 +464,36 @@ static neuv_status load_patchnet(const nn_checkpoint *c, const char *h, unwrap_m
     return check_params(c, &m->patchnet->params);
 }
 
+/* A category model: settings, both networks and PatchNet; no surface. */
+static neuv_status load_category(const nn_checkpoint *c, const char *h, unwrap_model *m)
+{
+    long long seed, res, pad, shapes, autok, refine = 0, has_param, has_patchnet;
+    neuv_status s;
+    m->category = 1;
+    if ((s = header_int(h, "seed", 0, INT64_MAX, &seed)) || (s = header_int(h, "resolution", 64, 16384, &res)) ||
+        (s = header_int(h, "padding", 0, 2048, &pad)) || (s = header_int(h, "category_shapes", 1, 1 << 20, &shapes)) ||
+        (s = header_int(h, "charts_auto", 0, 1, &autok)) || (s = header_int(h, "refine", 0, 1000000, &refine)) ||
+        (s = header_int(h, "param", 0, 1, &has_param)) || (s = header_int(h, "patchnet", 0, 1, &has_patchnet)))
+        return s;
+    if (m->method != NEUV_METHOD_NEURAL || !has_param || !has_patchnet)
+        return neuv_fail(NEUV_ERR_INPUT, "a category model must be neural and hold both PatchNet and the "
+                                         "parameterization networks");
+    const char *dv = header_value(h, "max_distortion");
+    char *end;
+    double maxd = dv ? strtod(dv, &end) : NAN;
+    if (!dv || end == dv || !(maxd >= 1 && maxd < 1e6))
+        return neuv_fail(NEUV_ERR_INPUT, "model header: \"max_distortion\" must be a number >= 1");
+    m->seed = (uint64_t)seed;
+    m->resolution = (int)res;
+    m->padding = (int)pad;
+    m->category_shapes = (int)shapes;
+    m->charts_auto = (int)autok;
+    m->refine = (int)refine;
+    m->max_distortion = maxd;
+    if ((s = load_param(c, h, m))) return s;
+    return load_patchnet(c, h, m);
+}
+
 static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
 {
     const char *h = c->config;
@@ -431,6 +512,9 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
     if (header_string_is(h, "preset", "paper")) m->preset = NEUV_PRESET_PAPER;
     else if (header_string_is(h, "preset", "fast")) m->preset = NEUV_PRESET_FAST;
     else return neuv_fail(NEUV_ERR_INPUT, "model header: \"preset\" must be fast or paper");
+    if (header_string_is(h, "kind", "category")) return load_category(c, h, m);
+    if (header_value(h, "kind") && !header_string_is(h, "kind", "surface"))
+        return neuv_fail(NEUV_ERR_INPUT, "model header: \"kind\" must be \"surface\" or \"category\"");
     if ((s = header_int(h, "seed", 0, INT64_MAX, &seed)) || (s = header_int(h, "resolution", 64, 16384, &res)) ||
         (s = header_int(h, "padding", 0, 2048, &pad)) || (s = header_int(h, "charts", 1, 1 << 20, &nc)) ||
         (s = header_int(h, "source_vertices", 3, MAX_EXACT_INT - 1, &nv)) ||

@@ -18,10 +18,16 @@
  *   charts.map       C by 2     network chart whose MLP_f map the chart uses (-1: classic map,
  *                               transferred by closest point), mirrored flag
  *   param.psi        N by D     per-network-chart code ψ
+ *   param.psi_norm   2 by 2D    ψ standardization (shift, mul), float64 bit pairs (newer files)
  *   param.frame      N by 26    centre (3), scale, rotation (9), float64 bit pairs
  *   param.mirror     N by 1
  *   f.*, g.*                    MLP_f and MLP_f⁻¹ weights (param_mlp.h names)
  *   patchnet.*                  PatchNet (DiffusionNet) weights
+ * A category model (`neuv train`, unwrap_category.h) has "kind": "category"
+ * in its header (a surface model "surface", or no kind in older files), the
+ * keys category_shapes, charts_auto and max_distortion instead of the charts
+ * and source sizes, and only param.psi_norm, f.*, g.* and patchnet.*: no
+ * surface, charts or packing, since every shape it meets gets its own.
  * Doubles are stored bit for bit (two float32 slots holding the 8 bytes), so
  * a loaded model reproduces the saved atlas exactly. */
 #ifndef NEUV_UNWRAP_UNWRAP_MODEL_H
@@ -38,6 +44,10 @@
 #define UNWRAP_MODEL_VERSION 1
 
 typedef struct unwrap_model {
+    int category;                /* 1: a category model (unwrap_category.h): no source surface, no charts */
+    int category_shapes;         /* category: shapes it was trained on */
+    int charts_auto;             /* category: 1 when charts split and merge by distortion after the argmax */
+    double max_distortion;       /* category: the split threshold (neuv_unwrap_options) */
     neuv_method method;
     neuv_preset preset;
     uint64_t seed;

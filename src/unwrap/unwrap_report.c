@@ -29,6 +29,37 @@ static void write_cleaning(json_writer *w, const mesh_clean_report *c)
     json_end_object(w);
 }
 
+/* The "model" section of an atlas from a saved surface model (unwrap_apply.h). */
+static void write_surface_model(json_writer *w, const struct neuv_unwrap_result *r)
+{
+    json_key(w, "trained_on_simplified_copy"); json_bool(w, r->model.trained_on_copy);
+    if (r->model.trained_on_copy) {
+        json_key(w, "train_faces"); json_int(w, r->model.train_faces);
+        json_key(w, "train_seconds"); json_number(w, r->model.train_seconds);
+    }
+    json_key(w, "charts_from"); json_string(w, "closest point on the source surface");
+    json_key(w, "network_charts"); json_int(w, r->model.network_charts);
+    json_key(w, "transferred_charts"); json_int(w, r->model.transferred_charts);
+    json_key(w, "empty_source_charts"); json_int(w, r->model.empty_charts);
+    json_key(w, "merged_fragments"); json_int(w, r->model.merged_fragments);
+    json_key(w, "shrunk_charts"); json_int(w, r->model.shrunk_charts);
+    json_key(w, "repacked"); json_bool(w, r->model.repacked);
+    json_key(w, "surface_distance"); json_number(w, r->model.surface_distance);
+    json_key(w, "inference_seconds"); json_number(w, r->model.inference_seconds);
+    json_key(w, "patchnet_label_agreement");
+    if (r->model.label_agreement >= 0) json_number(w, r->model.label_agreement);
+    else json_null(w);
+}
+
+/* The "model" section of an unseen shape unwrapped with a category model. */
+static void write_category_model(json_writer *w, const struct neuv_unwrap_result *r)
+{
+    json_key(w, "charts_from"); json_string(w, "PatchNet inference on this shape");
+    json_key(w, "network_charts"); json_int(w, r->model.network_charts);
+    json_key(w, "finetune_steps"); json_int(w, r->model.finetune);
+    json_key(w, "inference_seconds"); json_number(w, r->model.inference_seconds);
+}
+
 char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_name, double load_seconds,
                               double export_seconds)
 {
@@ -96,23 +127,9 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     if (r->model.used) {
         json_key(&w, "model");
         json_begin_object(&w);
-        json_key(&w, "trained_on_simplified_copy"); json_bool(&w, r->model.trained_on_copy);
-        if (r->model.trained_on_copy) {
-            json_key(&w, "train_faces"); json_int(&w, r->model.train_faces);
-            json_key(&w, "train_seconds"); json_number(&w, r->model.train_seconds);
-        }
-        json_key(&w, "charts_from"); json_string(&w, "closest point on the source surface");
-        json_key(&w, "network_charts"); json_int(&w, r->model.network_charts);
-        json_key(&w, "transferred_charts"); json_int(&w, r->model.transferred_charts);
-        json_key(&w, "empty_source_charts"); json_int(&w, r->model.empty_charts);
-        json_key(&w, "merged_fragments"); json_int(&w, r->model.merged_fragments);
-        json_key(&w, "shrunk_charts"); json_int(&w, r->model.shrunk_charts);
-        json_key(&w, "repacked"); json_bool(&w, r->model.repacked);
-        json_key(&w, "surface_distance"); json_number(&w, r->model.surface_distance);
-        json_key(&w, "inference_seconds"); json_number(&w, r->model.inference_seconds);
-        json_key(&w, "patchnet_label_agreement");
-        if (r->model.label_agreement >= 0) json_number(&w, r->model.label_agreement);
-        else json_null(&w);
+        json_key(&w, "kind"); json_string(&w, r->model.category ? "category" : "surface");
+        if (r->model.category) write_category_model(&w, r);
+        else write_surface_model(&w, r);
         json_end_object(&w);
     }
 

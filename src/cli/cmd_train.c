@@ -1,0 +1,145 @@
+/* neuv train -o M.neuv IN... [options]: a category model (unwrap_category.h). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "cli/commands.h"
+#include "core/atomic_file.h"
+#include "core/json_writer.h"
+#include "unwrap/unwrap_category.h"
+
+static const char *usage_text =
+    "usage: neuv train -o M.neuv IN... [--charts auto|K] [--max-distortion X] [--preset fast|paper]\n"
+    "                  [--iters N] [--patch-iters N] [--refine N] [--seed S] [--threads T]\n"
+    "                  [--resolution PX] [--padding PX] [--report R.json] [--no-cache] [--quiet]\n"
+    "  trains PatchNet and the parameterization networks on all inputs at once (a category\n"
+    "  model); `neuv unwrap --model M.neuv NEW` then unwraps an unseen shape by inference\n";
+
+static char *report_json(const category_train_report *r, const char *model)
+{
+    json_writer w;
+    json_init(&w);
+    json_begin_object(&w);
+    json_key(&w, "model"); json_string(&w, model);
+    json_key(&w, "shapes"); json_int(&w, r->shapes);
+    json_key(&w, "faces"); json_int(&w, r->faces);
+    json_key(&w, "charts"); json_int(&w, r->charts);
+    json_key(&w, "patchnet_k"); json_int(&w, r->patch_k);
+    json_key(&w, "patchnet_iterations"); json_int(&w, r->patch_iterations);
+    json_key(&w, "patchnet_loss"); json_number(&w, r->patch_loss);
+    json_key(&w, "param_iterations"); json_int(&w, r->param_iterations);
+    json_key(&w, "param_loss"); json_number(&w, r->param_loss);
+    json_key(&w, "seconds");
+    json_begin_object(&w);
+    json_key(&w, "operators"); json_number(&w, r->seconds_operators);
+    json_key(&w, "patches"); json_number(&w, r->seconds_patches);
+    json_key(&w, "charts"); json_number(&w, r->seconds_charts);
+    json_key(&w, "param"); json_number(&w, r->seconds_param);
+    json_key(&w, "total"); json_number(&w, r->seconds);
+    json_end_object(&w);
+    json_end_object(&w);
+    if (w.failed) { json_free(&w); return NULL; }
+    return w.buf;
+}
+
+int cmd_train(int argc, char **argv)
+{
+    neuv_unwrap_options o;
+    neuv_unwrap_options_default(&o);
+    const char *out = NULL, *charts = NULL, *preset = NULL, *report = NULL;
+    int seed = -1, refine = -1, patch_iters = 0, bad = 0, n = 0;
+    const char **inputs = calloc((size_t)argc, sizeof *inputs);
+    if (!inputs) return cli_error(NULL, "out of memory");
+    for (int i = 1; i < argc && !bad; i++) {
+        if (cli_arg_global(argc, argv, &i, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "-o", &out, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--charts", &charts, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--preset", &preset, &bad)) continue;
+        if (cli_arg_str(argc, argv, &i, "--report", &report, &bad)) continue;
+        if (cli_arg_double(argc, argv, &i, "--max-distortion", &o.max_distortion, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--iters", &o.iters, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--patch-iters", &patch_iters, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--refine", &refine, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--seed", &seed, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--resolution", &o.resolution, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--padding", &o.padding, &bad)) continue;
+        if (!strcmp(argv[i], "--no-cache")) { o.use_cache = 0; continue; }
+        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) { fputs(usage_text, stdout); free(inputs); return 0; }
+        if (argv[i][0] == '-' && argv[i][1]) { free(inputs); return cli_error(NULL, "train: unknown option '%s'", argv[i]); }
+        inputs[n++] = argv[i];
+    }
+    int rc = bad ? 2 : 0;
+    if (!rc && (!out || n == 0)) rc = cli_error(NULL, "train needs -o M.neuv and at least one input mesh (neuv train --help)");
+    if (!rc && preset) {
+        if (!strcmp(preset, "fast")) o.preset = NEUV_PRESET_FAST;
+        else if (!strcmp(preset, "paper")) o.preset = NEUV_PRESET_PAPER;
+        else rc = cli_error(NULL, "--preset expects fast or paper, got '%s'", preset);
+    }
+    if (!rc && charts && strcmp(charts, "auto") != 0) {
+        char *end;
+        long k = strtol(charts, &end, 10);
+        if (*end || k < 1 || k > 4096) rc = cli_error(NULL, "--charts expects auto or a count in 1..4096, got '%s'", charts);
+        else o.charts = (int)k;
+    }
+    if (!rc && o.max_distortion < 1.0) rc = cli_error(NULL, "--max-distortion must be at least 1");
+    if (!rc && o.iters < 0) rc = cli_error(NULL, "--iters must be positive");
+    if (!rc && (patch_iters < 0 || patch_iters > 10000000)) rc = cli_error(NULL, "--patch-iters must be positive");
+    if (!rc && (refine < -1 || refine > 1000000))
+        rc = cli_error(NULL, "--refine must be 0 (off) or a step count up to 1000000");
+    if (!rc && seed < -1) rc = cli_error(NULL, "--seed must be non-negative");
+    if (!rc && (o.resolution < 64 || o.resolution > 16384)) rc = cli_error(NULL, "--resolution must be in 64..16384");
+    if (!rc && (o.padding < 0 || o.padding > o.resolution / 8)) rc = cli_error(NULL, "--padding must be in 0..resolution/8");
+    for (int i = 0; !rc && i < n; i++) {
+        rc = cli_check_output_not_input(out, inputs[i]);
+        if (!rc && report) rc = cli_check_output_not_input(report, inputs[i]);
+    }
+    if (!rc) rc = cli_check_output_folder(out);
+    if (!rc && report) rc = cli_check_output_folder(report);
+    if (rc) { free(inputs); return rc; }
+    if (refine >= 0) o.refine = refine;
+    if (seed >= 0) o.seed = (unsigned long long)seed;
+    o.threads = cli_opts.threads;
+
+    neuv_mesh **meshes = calloc((size_t)n, sizeof *meshes);
+    if (!meshes) { free(inputs); return cli_error(NULL, "out of memory"); }
+    for (int i = 0; !rc && i < n; i++) {
+        neuv_status s = neuv_mesh_load(inputs[i], &meshes[i]);
+        if (s != NEUV_OK) rc = cli_fail(inputs[i], s);
+    }
+    unwrap_model *md = NULL;
+    category_train_report rep;
+    if (!rc) {
+        neuv_status s = unwrap_category_train((const neuv_mesh *const *)meshes, n, &o, patch_iters, &md, &rep);
+        if (s != NEUV_OK) rc = cli_fail(n == 1 ? inputs[0] : "train", s);
+    }
+    char *json = NULL;
+    if (!rc && report) {
+        json = report_json(&rep, out);
+        if (!json) rc = cli_error(NULL, "out of memory writing the report");
+    }
+    if (!rc) {
+        neuv_status s = unwrap_model_save(md, out);
+        if (s != NEUV_OK) rc = cli_fail(out, s);
+    }
+    if (!rc && json) {
+        atomic_file af;
+        neuv_status s = atomic_file_open(&af, report);
+        if (s == NEUV_OK) {
+            fputs(json, af.fp);
+            fputc('\n', af.fp);
+            s = atomic_file_commit(&af);
+        }
+        if (s != NEUV_OK) rc = cli_fail(report, s);
+    }
+    if (!rc && !cli_opts.quiet)
+        printf("trained on %d shapes (%d faces, %d charts): PatchNet K %d, %d steps; networks %d steps, "
+               "%.1f s -> %s\n", rep.shapes, rep.faces, rep.charts, rep.patch_k, rep.patch_iterations,
+               rep.param_iterations, rep.seconds, out);
+    free(json);
+    unwrap_model_free(md);
+    for (int i = 0; i < n; i++) neuv_mesh_free(meshes[i]);
+    free(meshes);
+    free(inputs);
+    return rc;
+}
