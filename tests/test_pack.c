@@ -10,6 +10,8 @@
 #include "atlas/convex_hull.h"
 #include "atlas/min_area_rect.h"
 #include "atlas/pack.h"
+#include "atlas/pack_split.h"
+#include "charts/charts.h"
 #include "atlas/uv_charts.h"
 #include "core/rng.h"
 #include "mesh/clean.h"
@@ -56,6 +58,7 @@ static void add_grid_chart(builder *b, int n, double sx, double sy, double zc, i
             int h = n / 2;
             if (shape == 1 && i >= h && j >= h) continue;                 /* L */
             if (shape == 2 && i >= n / 3 && i < n - n / 3 && j >= h) continue; /* U */
+            if (shape == 3 && i >= n / 6 && j >= n / 6) continue; /* L with thin arms */
             int a = base + j * (n + 1) + i;
             add_face(b, a, a + 1, a + n + 2);
             add_face(b, a, a + n + 2, a + n + 1);
@@ -314,10 +317,59 @@ static void test_bad_input(void)
     mesh_free(m);
 }
 
+/* Splitting for packing: an L-shaped chart with thin arms (UV = its plane)
+ * is cut, every part a disk with its UVs untouched, and the full packing
+ * gains; a square chart (convexity 1) is never tried. */
+static double packed_efficiency(const neuv_mesh *m, const int *fc, int nc)
+{
+    neuv_mesh *c = mesh_clone(m);
+    atlas_pack_result res;
+    CHECK_INT(atlas_pack(c, fc, nc, NULL, NULL, &res), NEUV_OK);
+    mesh_free(c);
+    return res.efficiency;
+}
+
+static void test_split_for_packing(void)
+{
+    for (int shape = 0; shape <= 3; shape += 3) {
+        builder b = {0};
+        add_grid_chart(&b, 12, 1.0, 1.0, 0, shape);
+        for (int v = 0; v < b.nv; v++) { b.uv[2 * v] = b.pos[3 * v]; b.uv[2 * v + 1] = b.pos[3 * v + 1]; }
+        neuv_mesh *m = mesh_create(b.nv, b.nf, b.nv);
+        memcpy(m->pos, b.pos, sizeof(double) * 3 * b.nv);
+        memcpy(m->tri, b.tri, sizeof(int) * 3 * b.nf);
+        memcpy(m->uv, b.uv, sizeof(double) * 2 * b.nv);
+        memcpy(m->tri_uv, b.tri, sizeof(int) * 3 * b.nf);
+        free(b.pos); free(b.uv); free(b.tri);
+        int *fc = calloc((size_t)m->nf, sizeof(int)), nc = 1, *parent = NULL;
+        pack_split_report rep;
+        double before = packed_efficiency(m, fc, 1);
+        CHECK_INT(pack_split_charts(m, fc, &nc, NULL, &parent, &rep), NEUV_OK);
+        double after = packed_efficiency(m, fc, nc);
+        printf("%s chart: %d trials, %d splits -> %d charts; quick packing %.3f -> %.3f, full %.3f -> %.3f, %.2f s\n",
+               shape ? "thin L" : "square", rep.trials, rep.splits, nc, rep.efficiency_before, rep.efficiency_after, before,
+               after, rep.seconds);
+        if (shape == 0) {
+            CHECK_INT(rep.trials, 0);
+            CHECK_INT(nc, 1);
+        } else {
+            CHECK(rep.splits >= 1 && nc >= 2);
+            CHECK(rep.efficiency_after >= rep.efficiency_before * 1.005);
+            CHECK(after > before);
+            for (int c = 0; c < nc; c++) {
+                CHECK_INT(parent[c], 0);
+                CHECK_INT(chart_is_disk(m, fc, c), 1);
+            }
+        }
+        free(parent); free(fc); mesh_free(m);
+    }
+}
+
 int main(void)
 {
     test_hull_and_rect();
     test_bad_input();
+    test_split_for_packing();
     neuv_mesh *m = procedural_charts(42, 24);
     check_pack("procedural 24 charts, 256 px pad 2", m, 256, 2, 0.40);
     mesh_free(m);

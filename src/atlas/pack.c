@@ -51,6 +51,7 @@ void atlas_pack_options_default(atlas_pack_options *o)
     o->resolution = 1024;
     o->padding = 2;
     o->keep_scale = 0;
+    o->quick = 0;
 }
 
 void atlas_chart_transform_apply(const atlas_chart_transform *t, const double uv[2], double out[2])
@@ -639,7 +640,10 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
                        ncharts, o.resolution, o.padding);
         goto done;
     }
-    if (pack_polish(&P, &cache, &lo, pl, best_pl, &attempts) != 0) { st = neuv_fail_nomem("atlas packing"); goto done; }
+    if (!o.quick && pack_polish(&P, &cache, &lo, pl, best_pl, &attempts) != 0) {
+        st = neuv_fail_nomem("atlas packing");
+        goto done;
+    }
     g = lo;
     for (int c = 0; c < ncharts; c++) {
         const chart_info *ci = &P.ch[c];

@@ -12,6 +12,7 @@ typedef struct atlas_pack_options {
     int resolution; /* atlas side in pixels (default 1024) */
     int padding;    /* empty pixels between charts and to the border (default 2) */
     int keep_scale; /* 1: keep the given relative scales of the charts instead of equal texel density */
+    int quick;      /* 1: the scale search only (no shuffled-order polish): to compare chart sets */
 } atlas_pack_options;
 
 /* The similarity that took chart UVs to the atlas:

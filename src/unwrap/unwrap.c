@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "atlas/pack_split.h"
 #include "charts/charts.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -284,6 +285,35 @@ neuv_status unwrap_metrics(const neuv_mesh *m, uv_metrics *out)
     return s;
 }
 
+/* Cuts charts that pack badly (atlas/pack_split.h); their UVs do not
+ * change, so a piece keeps its parent's network map and mirror flag. */
+static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_mesh *m)
+{
+    pack_split_options so;
+    pack_split_default_options(&so);
+    so.pack.resolution = r->opts.resolution;
+    so.pack.padding = r->opts.padding;
+    int *parent = NULL, before = r->n_charts;
+    pack_split_report rep;
+    neuv_status s = pack_split_charts(m, r->face_chart, &r->n_charts, &so, &parent, &rep);
+    if (s != NEUV_OK) return s;
+    r->pack_splits = rep.splits;
+    r->pack_split_trials = rep.trials;
+    if (r->n_charts > before && r->chart_net) {
+        int *net = realloc(r->chart_net, sizeof(int) * (size_t)r->n_charts);
+        if (net) r->chart_net = net;
+        int *mir = realloc(r->chart_mirrored, sizeof(int) * (size_t)r->n_charts);
+        if (mir) r->chart_mirrored = mir;
+        if (!net || !mir) { free(parent); return neuv_fail_nomem("the model"); }
+        for (int c = before; c < r->n_charts; c++) {
+            r->chart_net[c] = r->chart_net[parent[c]];
+            r->chart_mirrored[c] = r->chart_mirrored[parent[c]];
+        }
+    }
+    free(parent);
+    return NEUV_OK;
+}
+
 /* category: a category model (unwrap_category.h) whose PatchNet and
  * parameterization networks replace training (finetune > 0: the networks
  * train that many steps from the model's weights); NULL: train on this mesh. */
@@ -406,6 +436,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
 
     t = now_seconds();
     neuv_progress("pack", 0, "%d charts", r->n_charts);
+    if ((s = split_for_packing(r, m)) != NEUV_OK) return s;
     r->transforms = calloc((size_t)r->n_charts, sizeof *r->transforms);
     if (!r->transforms) return neuv_fail_nomem("chart transforms");
     atlas_pack_options pk;

@@ -35,6 +35,8 @@ struct neuv_unwrap_result {
     int refine_steps;         /* vertex refinement steps taken (flatten/uv_refine.h) */
     double refine_seconds;
     int refine_stopped;       /* charts whose refinement stopped early at the last injective map */
+    int pack_splits;          /* charts cut so that the atlas packs better (atlas/pack_split.h) */
+    int pack_split_trials;
     atlas_chart_transform *transforms; /* n_charts */
     atlas_pack_result pack;
     unwrap_repair *repairs;

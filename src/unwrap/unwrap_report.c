@@ -119,6 +119,8 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "resolution"); json_int(&w, r->opts.resolution);
     json_key(&w, "padding"); json_int(&w, r->opts.padding);
     json_key(&w, "efficiency"); json_number(&w, r->pack.efficiency);
+    json_key(&w, "split_charts"); json_int(&w, r->pack_splits);
+    json_key(&w, "split_trials"); json_int(&w, r->pack_split_trials);
     json_end_object(&w);
 
     json_key(&w, "cleaning");
