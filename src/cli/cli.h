@@ -44,6 +44,11 @@ int cli_arg_double(int argc, char **argv, int *i, const char *name, double *out,
 /* Consumes the global flags (--quiet, --threads T) wherever they stand. */
 int cli_arg_global(int argc, char **argv, int *i, int *bad);
 
+/* --charts auto|K (K in 1..4096; auto: 0) and --preset fast|paper: 0 on
+ * success, else the one-line error is printed and 2 returned. */
+int cli_parse_charts(const char *s, int *out);
+int cli_parse_preset(const char *s, neuv_preset *out);
+
 /* Fails early (before long work) when the folder of `out` does not exist
  * or `out` is a directory; returns 0 when it looks writable. */
 int cli_check_output_folder(const char *out);

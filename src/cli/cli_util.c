@@ -201,3 +201,22 @@ int cli_load_clean(const char *in, neuv_mesh **out, mesh_clean_report *report)
     *out = m;
     return 0;
 }
+
+int cli_parse_charts(const char *s, int *out)
+{
+    if (!strcmp(s, "auto")) { *out = 0; return 0; }
+    char *end;
+    long k = strtol(s, &end, 10);
+    if (end == s || *end || k < 1 || k > 4096)
+        return cli_error(NULL, "--charts expects auto or a count in 1..4096, got '%s'", s);
+    *out = (int)k;
+    return 0;
+}
+
+int cli_parse_preset(const char *s, neuv_preset *out)
+{
+    if (!strcmp(s, "fast")) *out = NEUV_PRESET_FAST;
+    else if (!strcmp(s, "paper")) *out = NEUV_PRESET_PAPER;
+    else return cli_error(NULL, "--preset expects fast or paper, got '%s'", s);
+    return 0;
+}

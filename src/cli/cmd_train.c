@@ -71,17 +71,8 @@ int cmd_train(int argc, char **argv)
     }
     int rc = bad ? 2 : 0;
     if (!rc && (!out || n == 0)) rc = cli_error(NULL, "train needs -o M.neuv and at least one input mesh (neuv train --help)");
-    if (!rc && preset) {
-        if (!strcmp(preset, "fast")) o.preset = NEUV_PRESET_FAST;
-        else if (!strcmp(preset, "paper")) o.preset = NEUV_PRESET_PAPER;
-        else rc = cli_error(NULL, "--preset expects fast or paper, got '%s'", preset);
-    }
-    if (!rc && charts && strcmp(charts, "auto") != 0) {
-        char *end;
-        long k = strtol(charts, &end, 10);
-        if (*end || k < 1 || k > 4096) rc = cli_error(NULL, "--charts expects auto or a count in 1..4096, got '%s'", charts);
-        else o.charts = (int)k;
-    }
+    if (!rc && preset) rc = cli_parse_preset(preset, &o.preset);
+    if (!rc && charts) rc = cli_parse_charts(charts, &o.charts);
     if (!rc && o.max_distortion < 1.0) rc = cli_error(NULL, "--max-distortion must be at least 1");
     if (!rc && o.iters < 0) rc = cli_error(NULL, "--iters must be positive");
     if (!rc && (patch_iters < 0 || patch_iters > 10000000)) rc = cli_error(NULL, "--patch-iters must be positive");

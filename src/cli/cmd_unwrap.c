@@ -18,8 +18,11 @@ static const char *usage_text =
     "                   [--train-faces N]\n";
 
 /* Above this many faces the networks train on a simplified copy and the model
- * is applied to the full mesh (bench/RESULTS.md, issue 8: training time grows
- * with the faces while quality does not, and applying a model costs ~1 s per 10k faces). */
+ * is applied to the full mesh. Measured (bench/bench_train_faces.sh,
+ * bench/RESULTS.md "The --train-faces default"): on the three shared meshes
+ * over 20k faces, a 20k copy is within 4% of full-size training's qce_mean
+ * at a quarter to a third of the time; 10k degrades armadillo (1.21), and
+ * 40k would take the million-face run past its 120 s bar. */
 #define DEFAULT_TRAIN_FACES 20000
 
 /* Default output: the input's name without its folder and extension, plus "-uv.obj". */
@@ -86,17 +89,8 @@ int cmd_unwrap(int argc, char **argv)
         else if (!strcmp(method, "harmonic")) o.method = NEUV_METHOD_HARMONIC;
         else return cli_error(NULL, "--method expects neural, lscm or harmonic, got '%s'", method);
     }
-    if (preset) {
-        if (!strcmp(preset, "fast")) o.preset = NEUV_PRESET_FAST;
-        else if (!strcmp(preset, "paper")) o.preset = NEUV_PRESET_PAPER;
-        else return cli_error(NULL, "--preset expects fast or paper, got '%s'", preset);
-    }
-    if (charts && strcmp(charts, "auto") != 0) {
-        char *end;
-        long k = strtol(charts, &end, 10);
-        if (*end || k < 1 || k > 4096) return cli_error(NULL, "--charts expects auto or a count in 1..4096, got '%s'", charts);
-        o.charts = (int)k;
-    }
+    if (preset && cli_parse_preset(preset, &o.preset)) return 2;
+    if (charts && cli_parse_charts(charts, &o.charts)) return 2;
     if (o.max_distortion < 1.0) return cli_error(NULL, "--max-distortion must be at least 1");
     if (o.iters < 0) return cli_error(NULL, "--iters must be positive");
     if (refine < -1 || refine > 1000000) return cli_error(NULL, "--refine must be 0 (off) or a step count up to 1000000");
