@@ -519,8 +519,11 @@ static int pack_polish(pack_ctx *P, pack_cache *pc, double *g, placement *pl, pl
     rng r;
     rng_seed(&r, 0x70ac4u);
     int rc = 0;
+    /* Two charts have two orders, and with the two placement sides and two
+     * turn counts 8 distinct tries: more misses in a row only repeat them. */
+    int tries = P->ncharts == 2 ? 8 : PACK_POLISH_TRIES;
     for (size_t s = 0; s < sizeof steps / sizeof steps[0] && rc == 0; s++) {
-        for (int misses = 0; misses < PACK_POLISH_TRIES && rc == 0;) {
+        for (int misses = 0; misses < tries && rc == 0;) {
             for (int c = 0; c < P->ncharts; c++) {
                 const chart_info *ci = &P->ch[c];
                 co[c].key = ci->W * ci->H * exp(0.7 * rng_normal(&r));
