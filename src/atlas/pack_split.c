@@ -121,11 +121,15 @@ neuv_status pack_split_charts(const neuv_mesh *m, int *face_chart, int *n_charts
      * out of memory stops the stage with an error. */
     if ((s = trial_pack(m, face_chart, n, &o.pack, &eff)) != NEUV_OK) goto done;
     rep->efficiency_before = rep->efficiency_after = eff;
+    int cvx_charts = 0; /* charts cvx was computed for: it changes only with a kept cut */
     while (rep->trials < o.max_trials && rep->splits < o.max_splits && n < o.max_charts) {
-        free(cvx);
-        cvx = malloc(sizeof(double) * (size_t)n);
-        if (!cvx) { s = neuv_fail_nomem("chart splitting"); break; }
-        if ((s = chart_convexity(m, face_chart, n, cvx)) != NEUV_OK) break;
+        if (cvx_charts != n) {
+            free(cvx);
+            cvx = malloc(sizeof(double) * (size_t)n);
+            if (!cvx) { s = neuv_fail_nomem("chart splitting"); break; }
+            if ((s = chart_convexity(m, face_chart, n, cvx)) != NEUV_OK) break;
+            cvx_charts = n;
+        }
         int worst = -1;
         for (int c = 0; c < n; c++)
             if (!tried[c] && cvx[c] < o.max_convexity && (worst < 0 || cvx[c] < cvx[worst])) worst = c;

@@ -49,6 +49,10 @@ int cli_arg_global(int argc, char **argv, int *i, int *bad);
 int cli_parse_charts(const char *s, int *out);
 int cli_parse_preset(const char *s, neuv_preset *out);
 
+/* Writes text and a newline to path atomically; returns 0 or the exit code
+ * (after printing the error). */
+int cli_write_text(const char *path, const char *text);
+
 /* Fails early (before long work) when the folder of `out` does not exist
  * or `out` is a directory; returns 0 when it looks writable. */
 int cli_check_output_folder(const char *out);

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/atomic_file.h"
 #include "core/json_writer.h"
 #include "mesh/clean.h"
 #include "core/timer.h"
@@ -219,4 +220,15 @@ int cli_parse_preset(const char *s, neuv_preset *out)
     else if (!strcmp(s, "paper")) *out = NEUV_PRESET_PAPER;
     else return cli_error(NULL, "--preset expects fast or paper, got '%s'", s);
     return 0;
+}
+
+int cli_write_text(const char *path, const char *text)
+{
+    atomic_file af;
+    neuv_status s = atomic_file_open(&af, path);
+    if (s != NEUV_OK) return cli_fail(path, s);
+    fputs(text, af.fp);
+    fputc('\n', af.fp);
+    s = atomic_file_commit(&af);
+    return s == NEUV_OK ? 0 : cli_fail(path, s);
 }

@@ -5,7 +5,6 @@
 
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "core/atomic_file.h"
 #include "core/json_writer.h"
 #include "unwrap/unwrap_category.h"
 
@@ -113,16 +112,7 @@ int cmd_train(int argc, char **argv)
         neuv_status s = unwrap_model_save(md, out);
         if (s != NEUV_OK) rc = cli_fail(out, s);
     }
-    if (!rc && json) {
-        atomic_file af;
-        neuv_status s = atomic_file_open(&af, report);
-        if (s == NEUV_OK) {
-            fputs(json, af.fp);
-            fputc('\n', af.fp);
-            s = atomic_file_commit(&af);
-        }
-        if (s != NEUV_OK) rc = cli_fail(report, s);
-    }
+    if (!rc && json) rc = cli_write_text(report, json);
     if (!rc && !cli_opts.quiet)
         printf("trained on %d shapes (%d faces, %d charts): PatchNet K %d, %d steps; networks %d steps, "
                "%.1f s -> %s\n", rep.shapes, rep.faces, rep.charts, rep.patch_k, rep.patch_iterations,

@@ -5,23 +5,11 @@
 
 #include "atlas/preview.h"
 #include "cli/cli.h"
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "unwrap/unwrap_apply.h"
 #include "unwrap/unwrap_internal.h"
 #include "unwrap/unwrap_model.h"
-
-static int write_text(const char *path, const char *text)
-{
-    atomic_file af;
-    neuv_status s = atomic_file_open(&af, path);
-    if (s != NEUV_OK) return cli_fail(path, s);
-    fputs(text, af.fp);
-    fputc('\n', af.fp);
-    s = atomic_file_commit(&af);
-    return s == NEUV_OK ? 0 : cli_fail(path, s);
-}
 
 int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const unwrap_job *job)
 {
@@ -74,7 +62,7 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
     int rc = 0;
     char *json = neuv_unwrap_report_json(r, job->input_name, job->load_seconds, export_seconds);
     if (!json) rc = cli_error(job->input_name, "out of memory writing the report");
-    if (rc == 0 && job->report) rc = write_text(job->report, json);
+    if (rc == 0 && job->report) rc = cli_write_text(job->report, json);
     if (rc == 0 && job->preview) {
         s = preview_write(neuv_unwrap_mesh(r), job->preview, (preview_color)job->preview_color);
         if (s != NEUV_OK) rc = cli_fail(job->preview, s);

@@ -85,6 +85,18 @@ neuv_status patchnet_model_create(patchnet_model *model, const patchnet_options 
     return NEUV_OK;
 }
 
+neuv_status patchnet_model_create_for_mesh(patchnet_model *model, const patchnet_options *o, const neuv_mesh *m,
+                                           const operators *ops, int k)
+{
+    memset(model, 0, sizeof *model);
+    nn_params_init(&model->params);
+    float *x = NULL;
+    int dim = 0;
+    neuv_status st = diffusion_net_input_features(m, ops, o->features, &x, &dim);
+    free(x);
+    return st ? st : patchnet_model_create(model, o, dim, k);
+}
+
 void patchnet_model_free(patchnet_model *model)
 {
     if (!model) return;
@@ -627,13 +639,9 @@ neuv_status patchnet_segment_model(const neuv_mesh *m, const operators *ops, con
     memset(rep, 0, sizeof *rep);
     int k = o->charts > 0 ? o->charts : (o->initial_charts > 0 ? o->initial_charts : 8);
     if (k > m->nf) k = m->nf;
-    float *x = NULL;
-    int dim = 0;
-    neuv_status st = diffusion_net_input_features(m, ops, o->features, &x, &dim);
-    free(x);
-    if (st) return st;
     patchnet_model model;
-    if ((st = patchnet_model_create(&model, o, dim, k))) return st;
+    neuv_status st = patchnet_model_create_for_mesh(&model, o, m, ops, k);
+    if (st) return st;
     if ((st = patchnet_train(&model, m, ops, o, rep))) goto done;
     if ((st = patchnet_charts_from_model(&model, m, ops, o, face_chart, n_charts, vertex_features, feature_dim,
                                          rep)))

@@ -84,6 +84,9 @@ typedef struct patchnet_model {
 /* Creates an untrained model with K outputs for the given input features.
  * Parameters are named "patchnet.*". Free with patchnet_model_free. */
 neuv_status patchnet_model_create(patchnet_model *model, const patchnet_options *o, int in_dim, int k);
+/* patchnet_model_create with the input size of o->features on this mesh. */
+neuv_status patchnet_model_create_for_mesh(patchnet_model *model, const patchnet_options *o, const neuv_mesh *m,
+                                           const operators *ops, int k);
 void patchnet_model_free(patchnet_model *model);
 
 /* Trains the model on one shape (Adam, L_cos + L_geo) until the plateau rule

@@ -395,15 +395,17 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
         if (o->iters > 0) pp.iters = o->iters;
         param_net_report pr;
         memset(&pr, 0, sizeof pr);
-        if (category) {
-            pp.width = category->param->f.width;
-            pp.depth = category->param->f.depth;
-            pp.init = category->param;
-            pp.iters = pp.min_iters = finetune;
-        }
-        if (category && finetune == 0)
+        if (category && finetune == 0) {
             s = param_net_infer(category->param, m, r->face_chart, r->n_charts, features, feature_dim, corner_uv, &pr);
-        else s = param_net_flatten(m, r->face_chart, r->n_charts, features, feature_dim, &pp, corner_uv, &pr);
+        } else {
+            if (category) { /* fine-tuning: the model's networks, trained `finetune` more steps */
+                pp.width = category->param->f.width;
+                pp.depth = category->param->f.depth;
+                pp.init = category->param;
+                pp.iters = pp.min_iters = finetune;
+            }
+            s = param_net_flatten(m, r->face_chart, r->n_charts, features, feature_dim, &pp, corner_uv, &pr);
+        }
         r->param_iterations = pr.iters;
         r->param_loss = pr.loss;
         r->param = pr.model;

@@ -129,13 +129,9 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     po.seed = o.seed;
     po.iters = patch_iters > 0 ? patch_iters : category_default_patch_iters(n);
     int k = o.charts > 0 ? o.charts : po.initial_charts;
-    float *x = NULL;
-    int in_dim = 0;
-    if ((s = diffusion_net_input_features(sh[0].mesh, &sh[0].ops, po.features, &x, &in_dim)) != NEUV_OK) goto done;
-    free(x);
     md->patchnet = calloc(1, sizeof *md->patchnet);
     if (!md->patchnet) { s = neuv_fail_nomem("the model"); goto done; }
-    if ((s = patchnet_model_create(md->patchnet, &po, in_dim, k)) != NEUV_OK) goto done;
+    if ((s = patchnet_model_create_for_mesh(md->patchnet, &po, sh[0].mesh, &sh[0].ops, k)) != NEUV_OK) goto done;
     patchnet_report prep;
     memset(&prep, 0, sizeof prep);
     if ((s = patchnet_train_shapes(md->patchnet, ms, os, n, &po, &prep)) != NEUV_OK) goto done;
