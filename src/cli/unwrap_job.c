@@ -69,8 +69,10 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
     }
     if (rc == 0 && !cli_opts.quiet) {
         const uv_metrics *mt = &r->metrics;
-        printf("%s: %d charts, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f, %.1f s -> %s\n",
-               job->input_name, r->n_charts, mt->qce_mean, mt->flipped, mt->overlap_fraction,
+        char sources[256];
+        unwrap_source_summary(r, sources, sizeof sources);
+        printf("%s: %d charts (%s), qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f, %.1f s -> %s\n",
+               job->input_name, r->n_charts, sources, mt->qce_mean, mt->flipped, mt->overlap_fraction,
                mt->packing_efficiency, job->load_seconds + r->total_seconds + export_seconds, job->output);
         if (r->n_repairs > 0) printf("  %d repairs (listed in the report)\n", r->n_repairs);
         if (r->model.trained_on_copy)

@@ -66,6 +66,8 @@ void unwrap_piece_clear(chart_piece *p)
     free(p->uv);
     memset(p, 0, sizeof *p);
     p->net = -1;
+    p->net_qce = NAN;
+    p->lscm_qce = NAN;
 }
 
 neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p)
@@ -115,7 +117,7 @@ static int grow_pieces(chart_piece **pieces, int *cap, int need)
     chart_piece *np = realloc(*pieces, sizeof *np * (size_t)nc);
     if (!np) return -1;
     memset(np + *cap, 0, sizeof *np * (size_t)(nc - *cap));
-    for (int i = *cap; i < nc; i++) np[i].net = -1;
+    for (int i = *cap; i < nc; i++) { np[i].net = -1; np[i].net_qce = NAN; np[i].lscm_qce = NAN; }
     *pieces = np;
     *cap = nc;
     return 0;
@@ -184,6 +186,36 @@ neuv_status unwrap_refine_piece(chart_piece *p, int steps, uv_refine_report *rep
     return uv_refine_chart(p->sub, &ro, p->uv, rep);
 }
 
+/* LSCM's qce_mean on the piece's chart (p->lscm_qce), for the report's
+ * comparison of the networks' map with LSCM on the same charts. */
+static neuv_status piece_lscm_qce(chart_piece *p)
+{
+    double *uv = malloc(sizeof(double) * 2 * (size_t)p->sub->nv);
+    if (!uv) return neuv_fail_nomem("chart UVs");
+    neuv_status s = lscm(p->sub, uv);
+    if (s == NEUV_OK) p->lscm_qce = chart_qce_mean(p->sub, uv, NULL);
+    free(uv);
+    return s == NEUV_ERR_NOMEM ? s : NEUV_OK; /* a failed solve leaves NaN */
+}
+
+neuv_status unwrap_keep_provenance(struct neuv_unwrap_result *r, const chart_piece *pieces)
+{
+    size_t n = (size_t)(r->n_charts > 0 ? r->n_charts : 1);
+    free(r->chart_source); free(r->chart_net_qce); free(r->chart_lscm_qce);
+    r->chart_source = malloc(sizeof(int) * n);
+    r->chart_net_qce = malloc(sizeof(double) * n);
+    r->chart_lscm_qce = malloc(sizeof(double) * n);
+    if (!r->chart_source || !r->chart_net_qce || !r->chart_lscm_qce) return neuv_fail_nomem("chart provenance");
+    r->neural_charts = 0;
+    for (int c = 0; c < r->n_charts; c++) {
+        r->chart_source[c] = (int)pieces[c].source;
+        r->chart_net_qce[c] = pieces[c].net_qce;
+        r->chart_lscm_qce[c] = pieces[c].lscm_qce;
+        r->neural_charts += chart_source_is_network(pieces[c].source);
+    }
+    return NEUV_OK;
+}
+
 static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m, const double *corner_uv,
                                       chart_piece **pieces_out, int *cap_out)
 {
@@ -203,6 +235,9 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
             piece_uv_from_corners(p, corner_uv);
             int ok = chart_uv_check_run(p->sub, p->uv, &chk);
             if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
+            p->net_qce = chart_qce_mean(p->sub, p->uv, NULL);
+            if (ok && (s = piece_lscm_qce(p)) != NEUV_OK) break;
+            p->source = ok && r->opts.refine > 0 ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
             if (ok && r->opts.refine > 0) {
                 uv_refine_report rr;
                 if ((s = unwrap_refine_piece(p, r->opts.refine, &rr)) != NEUV_OK) break;
@@ -210,8 +245,8 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                 if (rr.iters > r->refine_steps) r->refine_steps = rr.iters;
                 r->refine_stopped += rr.charts_stopped;
             }
+            if (!ok) p->source = CHART_SOURCE_NETWORK_FOLDED;
             if (ok || r->opts.allow_overlaps) {
-                r->neural_charts++;
                 p->net = c;
                 p->mirrored = chk.mirrored;
                 continue;
@@ -221,8 +256,14 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
         }
         s = flatten_classic(corner_uv ? NEUV_METHOD_LSCM : classic, p);
         if (s != NEUV_OK) break;
+        neuv_method used = corner_uv ? NEUV_METHOD_LSCM : classic;
+        if (p->from_split)
+            p->source = used == NEUV_METHOD_HARMONIC ? CHART_SOURCE_HARMONIC_AFTER_SPLIT : CHART_SOURCE_LSCM_AFTER_SPLIT;
+        else if (corner_uv) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
+        else p->source = used == NEUV_METHOD_HARMONIC ? CHART_SOURCE_HARMONIC : CHART_SOURCE_LSCM;
         int ok = chart_uv_check_run(p->sub, p->uv, &chk);
         if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
+        if (used == NEUV_METHOD_LSCM) p->lscm_qce = chart_qce_mean(p->sub, p->uv, NULL);
         p->mirrored = chk.mirrored;
         if (ok || r->opts.allow_overlaps) continue;
         if (p->sub->nf < 2 || splits >= m->nf) {
@@ -299,6 +340,21 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
     if (s != NEUV_OK) return s;
     r->pack_splits = rep.splits;
     r->pack_split_trials = rep.trials;
+    if (r->n_charts > before && r->chart_source) {
+        /* A piece keeps its parent's map, so its source; the qce figures are the parent's. */
+        int *src = realloc(r->chart_source, sizeof(int) * (size_t)r->n_charts);
+        if (src) r->chart_source = src;
+        double *nq = realloc(r->chart_net_qce, sizeof(double) * (size_t)r->n_charts);
+        if (nq) r->chart_net_qce = nq;
+        double *lq = realloc(r->chart_lscm_qce, sizeof(double) * (size_t)r->n_charts);
+        if (lq) r->chart_lscm_qce = lq;
+        if (!src || !nq || !lq) { free(parent); return neuv_fail_nomem("chart provenance"); }
+        for (int c = before; c < r->n_charts; c++) {
+            r->chart_source[c] = r->chart_source[parent[c]];
+            r->chart_net_qce[c] = r->chart_net_qce[parent[c]];
+            r->chart_lscm_qce[c] = r->chart_lscm_qce[parent[c]];
+        }
+    }
     if (r->n_charts > before && r->chart_net) {
         int *net = realloc(r->chart_net, sizeof(int) * (size_t)r->n_charts);
         if (net) r->chart_net = net;
@@ -420,6 +476,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     s = flatten_and_repair(r, m, corner_uv, &pieces, &cap);
     free(corner_uv);
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
+    if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     if (s == NEUV_OK && keep_model) {
         r->chart_net = malloc(sizeof(int) * (size_t)r->n_charts);
         r->chart_mirrored = malloc(sizeof(int) * (size_t)r->n_charts);
@@ -530,6 +587,9 @@ void neuv_unwrap_result_free(neuv_unwrap_result *r)
     free(r->repairs);
     free(r->chart_net);
     free(r->chart_mirrored);
+    free(r->chart_source);
+    free(r->chart_net_qce);
+    free(r->chart_lscm_qce);
     free(r->face_label);
     if (r->patchnet) patchnet_model_free(r->patchnet);
     free(r->patchnet);

@@ -651,13 +651,14 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         chart_piece *p = &pieces[c];
         if ((s = unwrap_piece_build(m, r->face_chart, c, p))) break;
         neuv_progress("param", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
-        int mc = model_chart[c], net = md->chart_net[mc], n = p->sub->nv;
+        int mc = model_chart[c], net = md->chart_net[mc], n = p->sub->nv, relaxed = 0;
         double *target = malloc(sizeof(double) * 2 * (size_t)n), *scratch = malloc(sizeof(double) * 2 * (size_t)n);
         if (!target || !scratch) { free(target); free(scratch); s = neuv_fail_nomem("chart UVs"); break; }
         if (net >= 0) {
             s = param_net_apply(md->param, net, p->sub->pos, n, p->uv);
             if (md->chart_mirrored[mc]) /* as the source's check did before packing */
                 for (int v = 0; v < n; v++) p->uv[2 * v] = -p->uv[2 * v];
+            if (s == NEUV_OK) p->net_qce = chart_qce_mean(p->sub, p->uv, NULL);
             if (s == NEUV_OK && refine > 0) { /* as the source's atlas was refined, where the map is usable */
                 chart_uv_check chk0;
                 int ok0 = uv_usable(p, p->uv, scratch, &chk0);
@@ -683,6 +684,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
                      chk.degenerate, chk.boundary_crossings, chk.mirrored ? ", reversed orientation" : "");
             const char *how = "LSCM";
             ok = relax_folds(p, scratch);
+            relaxed = ok > 0;
             if (ok > 0) {
                 unwrap_add_repair(r, c, "%s map folded on this mesh (%s); folded faces relaxed locally",
                                   net >= 0 ? "network" : "transferred", why);
@@ -713,11 +715,15 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         }
         if (ok < 0) s = neuv_fail_nomem("chart check");
         else if (net >= 0) transform_uvs(p->uv, n, &md->xf[mc]);
+        if (net < 0) p->source = CHART_SOURCE_TRANSFERRED;
+        else if (repaired[c]) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
+        else p->source = refine > 0 || relaxed ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
         if (net >= 0 && !repaired[c]) r->model.network_charts++;
         if (net < 0) r->model.transferred_charts++;
         free(target); free(scratch);
     }
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
+    if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     chart_span *span = s == NEUV_OK ? calloc((size_t)r->n_charts, sizeof *span) : NULL;
     if (s == NEUV_OK && !span) s = neuv_fail_nomem("charts");
     for (int c = 0, base = 0; s == NEUV_OK && c < r->n_charts; c++) {

@@ -3,6 +3,8 @@
 #ifndef NEUV_UNWRAP_UNWRAP_INTERNAL_H
 #define NEUV_UNWRAP_UNWRAP_INTERNAL_H
 
+#include <stddef.h>
+
 #include "neuv/neuv.h"
 #include "atlas/pack.h"
 #include "mesh/clean.h"
@@ -10,6 +12,7 @@
 #include "metrics/uv_metrics.h"
 #include "models/param_net.h"
 #include "models/patchnet.h"
+#include "unwrap/chart_source.h"
 
 /* One repair, as the report lists it. */
 typedef struct unwrap_repair {
@@ -31,7 +34,13 @@ struct neuv_unwrap_result {
     double patch_iters_per_second;
     int param_iterations;
     double param_loss;
-    int neural_charts;        /* charts whose final map is the network's (refined or not) */
+    int neural_charts;        /* charts the networks mapped injectively (source network or network+refined) */
+    /* Provenance (n_charts each, chart_source.h): where each chart's final map
+     * came from, the networks' own qce_mean on it before anything else touched
+     * it (NaN: the networks made no map of it) and LSCM's qce_mean on the same
+     * chart (NaN: not computed). */
+    int *chart_source;
+    double *chart_net_qce, *chart_lscm_qce;
     int refine_steps;         /* vertex refinement steps taken (flatten/uv_refine.h) */
     double refine_seconds;
     int refine_stopped;       /* charts whose refinement stopped early at the last injective map */
@@ -73,6 +82,9 @@ struct neuv_unwrap_result {
     } model;
 };
 
+/* "11 network+refined, 3 lscm_after_fold": how many charts each source made. */
+void unwrap_source_summary(const struct neuv_unwrap_result *r, char *buf, size_t n);
+
 /* Appends a repair note (formatted); silently drops it if memory runs out. */
 void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
@@ -85,7 +97,14 @@ typedef struct chart_piece {
     int from_split;  /* made by a split: flattened by the classic method */
     int net;         /* network chart whose map is kept, -1 otherwise */
     int mirrored;    /* chart_uv_check mirrored it */
+    chart_source source;   /* where its final map came from */
+    double net_qce;        /* the networks' own qce_mean on it (NaN: none) */
+    double lscm_qce;       /* LSCM's qce_mean on it (NaN: not computed) */
 } chart_piece;
+
+/* The provenance arrays of r (chart_source, chart_net_qce, chart_lscm_qce)
+ * from the pieces. Returns NEUV_OK or NEUV_ERR_NOMEM. */
+neuv_status unwrap_keep_provenance(struct neuv_unwrap_result *r, const chart_piece *pieces);
 
 void unwrap_piece_clear(chart_piece *p);
 /* Builds chart `id` of m as a piece with zeroed UVs (keeps from_split). */

@@ -1,8 +1,11 @@
 /* The JSON report of an unwrap (SPEC.md section 4). */
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/json_writer.h"
+#include "metrics/uv_metrics.h"
 #include "unwrap/unwrap_internal.h"
 
 static const char *method_name(neuv_method m)
@@ -27,6 +30,112 @@ static void write_cleaning(json_writer *w, const mesh_clean_report *c)
     json_key(w, "split_vertices"); json_int(w, c->split_vertices);
     json_key(w, "nonorientable_components"); json_int(w, c->nonorientable_components);
     json_end_object(w);
+}
+
+/* Per chart of the final atlas: faces, 3D area and area-weighted qce
+ * (docs/metrics.md; faces of zero area left out), from r->mesh's UVs. */
+typedef struct chart_figures { int faces; double area, qce_num, qce_den; } chart_figures;
+
+static chart_figures *chart_figures_compute(const struct neuv_unwrap_result *r)
+{
+    const neuv_mesh *m = r->mesh;
+    chart_figures *cf = calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *cf);
+    if (!cf || !m->tri_uv || !r->face_chart) return cf;
+    for (int f = 0; f < m->nf; f++) {
+        int c = r->face_chart[f];
+        if (c < 0 || c >= r->n_charts) continue;
+        double p[3][3], q[3][2], sv[2];
+        for (int k = 0; k < 3; k++) {
+            int v = m->tri[3 * f + k], t = m->tri_uv[3 * f + k];
+            for (int d = 0; d < 3; d++) p[k][d] = m->pos[3 * v + d];
+            q[k][0] = m->uv[2 * t];
+            q[k][1] = m->uv[2 * t + 1];
+        }
+        double a = mesh_face_area(m, f);
+        cf[c].faces++;
+        cf[c].area += a;
+        uv_jacobian_singular_values(p, q, sv);
+        if (a > 0 && sv[1] > 0 && isfinite(sv[0] / sv[1])) { cf[c].qce_num += a * sv[0] / sv[1]; cf[c].qce_den += a; }
+    }
+    return cf;
+}
+
+static void json_number_or_null(json_writer *w, double v)
+{
+    if (isfinite(v)) json_number(w, v);
+    else json_null(w);
+}
+
+/* "provenance": charts and area share per source, the networks' own
+ * qce_mean over the charts they mapped injectively and LSCM's on the same
+ * charts; "chart_list": every chart's figures. */
+static void write_provenance(json_writer *w, const struct neuv_unwrap_result *r)
+{
+    chart_figures *cf = chart_figures_compute(r);
+    if (!cf || !r->chart_source) { free(cf); return; }
+    int count[CHART_SOURCE_COUNT] = {0};
+    double area[CHART_SOURCE_COUNT] = {0}, total = 0, nq = 0, lq = 0, qa = 0, la = 0;
+    for (int c = 0; c < r->n_charts; c++) {
+        int src = r->chart_source[c];
+        if (src < 0 || src >= CHART_SOURCE_COUNT) continue;
+        count[src]++;
+        area[src] += cf[c].area;
+        total += cf[c].area;
+        if (chart_source_is_network((chart_source)src) && isfinite(r->chart_net_qce[c])) {
+            nq += cf[c].area * r->chart_net_qce[c];
+            qa += cf[c].area;
+            if (isfinite(r->chart_lscm_qce[c])) { lq += cf[c].area * r->chart_lscm_qce[c]; la += cf[c].area; }
+        }
+    }
+    json_key(w, "provenance");
+    json_begin_object(w);
+    json_key(w, "sources");
+    json_begin_object(w);
+    for (int k = 0; k < CHART_SOURCE_COUNT; k++) {
+        if (count[k] == 0 && k != CHART_SOURCE_NETWORK) continue;
+        json_key(w, chart_source_name((chart_source)k));
+        json_begin_object(w);
+        json_key(w, "charts"); json_int(w, count[k]);
+        json_key(w, "area_fraction"); json_number(w, total > 0 ? area[k] / total : 0);
+        json_end_object(w);
+    }
+    json_end_object(w);
+    json_key(w, "network_area_fraction");
+    json_number(w, total > 0 ? (area[CHART_SOURCE_NETWORK] + area[CHART_SOURCE_NETWORK_REFINED]) / total : 0);
+    json_key(w, "network_qce_mean"); json_number_or_null(w, qa > 0 ? nq / qa : NAN);
+    json_key(w, "lscm_qce_mean_same_charts"); json_number_or_null(w, la > 0 && la >= qa * (1 - 1e-12) ? lq / la : NAN);
+    json_end_object(w);
+
+    json_key(w, "chart_list");
+    json_begin_array(w);
+    for (int c = 0; c < r->n_charts; c++) {
+        json_begin_object(w);
+        json_key(w, "chart"); json_int(w, c);
+        json_key(w, "faces"); json_int(w, cf[c].faces);
+        json_key(w, "area"); json_number(w, cf[c].area);
+        json_key(w, "source"); json_string(w, chart_source_name((chart_source)r->chart_source[c]));
+        json_key(w, "network_qce"); json_number_or_null(w, r->chart_net_qce[c]);
+        json_key(w, "lscm_qce"); json_number_or_null(w, r->chart_lscm_qce[c]);
+        json_key(w, "qce"); json_number_or_null(w, cf[c].qce_den > 0 ? cf[c].qce_num / cf[c].qce_den : NAN);
+        json_end_object(w);
+    }
+    json_end_array(w);
+    free(cf);
+}
+
+void unwrap_source_summary(const struct neuv_unwrap_result *r, char *buf, size_t n)
+{
+    int count[CHART_SOURCE_COUNT] = {0};
+    for (int c = 0; r->chart_source && c < r->n_charts; c++)
+        if (r->chart_source[c] >= 0 && r->chart_source[c] < CHART_SOURCE_COUNT) count[r->chart_source[c]]++;
+    size_t used = 0;
+    buf[0] = 0;
+    for (int k = 0; k < CHART_SOURCE_COUNT && used < n; k++) {
+        if (count[k] == 0) continue;
+        int w = snprintf(buf + used, n - used, "%s%d %s", used ? ", " : "", count[k], chart_source_name((chart_source)k));
+        if (w < 0) break;
+        used += (size_t)w;
+    }
 }
 
 /* The "model" section of an atlas from a saved surface model (unwrap_apply.h). */
@@ -108,7 +217,7 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_begin_object(&w);
     json_key(&w, "iterations"); json_int(&w, r->param_iterations);
     json_key(&w, "final_loss"); json_number(&w, r->param_loss);
-    json_key(&w, "neural_charts"); json_int(&w, r->neural_charts);
+    json_key(&w, "network_charts"); json_int(&w, r->neural_charts);
     json_key(&w, "refine_steps"); json_int(&w, r->refine_steps);
     json_key(&w, "refine_seconds"); json_number(&w, r->refine_seconds);
     json_key(&w, "refine_stopped_charts"); json_int(&w, r->refine_stopped);
@@ -125,6 +234,8 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
 
     json_key(&w, "cleaning");
     write_cleaning(&w, &r->clean);
+
+    write_provenance(&w, r);
 
     if (r->model.used) {
         json_key(&w, "model");

@@ -1,0 +1,49 @@
+/* Chart provenance names and the per-chart qce (chart_source.h). */
+#include "unwrap/chart_source.h"
+
+#include <math.h>
+
+#include "metrics/uv_metrics.h"
+
+const char *chart_source_name(chart_source s)
+{
+    switch (s) {
+    case CHART_SOURCE_NETWORK: return "network";
+    case CHART_SOURCE_NETWORK_REFINED: return "network+refined";
+    case CHART_SOURCE_NETWORK_FOLDED: return "network_folded";
+    case CHART_SOURCE_LSCM_AFTER_FOLD: return "lscm_after_fold";
+    case CHART_SOURCE_LSCM_AFTER_SPLIT: return "lscm_after_split";
+    case CHART_SOURCE_LSCM: return "lscm";
+    case CHART_SOURCE_HARMONIC: return "harmonic";
+    case CHART_SOURCE_HARMONIC_AFTER_SPLIT: return "harmonic_after_split";
+    case CHART_SOURCE_TRANSFERRED: return "transferred";
+    default: return "unknown";
+    }
+}
+
+int chart_source_is_network(chart_source s)
+{
+    return s == CHART_SOURCE_NETWORK || s == CHART_SOURCE_NETWORK_REFINED;
+}
+
+double chart_qce_mean(const neuv_mesh *sub, const double *uv, double *area)
+{
+    double num = 0, den = 0, total = 0;
+    for (int f = 0; f < sub->nf; f++) {
+        double p[3][3], q[3][2], s[2];
+        for (int k = 0; k < 3; k++) {
+            int v = sub->tri[3 * f + k];
+            for (int c = 0; c < 3; c++) p[k][c] = sub->pos[3 * v + c];
+            q[k][0] = uv[2 * v];
+            q[k][1] = uv[2 * v + 1];
+        }
+        double a = mesh_face_area(sub, f);
+        total += a;
+        uv_jacobian_singular_values(p, q, s);
+        if (!(a > 0) || !(s[1] > 0) || !isfinite(s[0] / s[1])) continue;
+        num += a * s[0] / s[1];
+        den += a;
+    }
+    if (area) *area = total;
+    return den > 0 ? num / den : NAN;
+}
