@@ -150,7 +150,7 @@ static int pipeline_charts(const neuv_mesh *m, const char *cache, int *chart, in
  * the chart's vertices and chart_uv_check_run; failing charts are replaced by
  * LSCM in `corner_uv` (as the repair stage does) so that the metrics after
  * this call are those of the repaired atlas. */
-typedef struct chart_tally { int ok, flipped, degenerate, crossings; } chart_tally;
+typedef struct chart_tally { int ok, flipped, degenerate, crossings; double area_ok, area; } chart_tally;
 
 static int check_and_repair(const neuv_mesh *m, const int *chart, int nc, double *corner_uv, chart_tally *t)
 {
@@ -167,6 +167,10 @@ static int check_and_repair(const neuv_mesh *m, const int *chart, int nc, double
         int ok = chart_uv_check_run(sub, uv, &chk);
         if (ok < 0) return -1;
         t->ok += ok;
+        double ca = 0;
+        for (int f = 0; f < sub->nf; f++) ca += mesh_face_area(sub, f);
+        t->area += ca;
+        if (ok) t->area_ok += ca;
         if (!ok && getenv("BENCH_VERBOSE"))
             fprintf(stderr, "    chart %d (%d faces): %d flipped, %d degenerate, %d crossings\n", c, sub->nf, chk.flipped,
                     chk.degenerate, chk.boundary_crossings);
@@ -204,15 +208,16 @@ static void print_row(const char *name, double sec, int iters, int nc, const cha
                       const uv_metrics *fin, const param_net_report *rep)
 {
     if (rep)
-        printf("| %s | %.1f | %d | %d/%d | %d | %d | %d | %.4f | %.4f | %.4f |\n", name, sec, iters, t->ok, nc,
-               t->flipped, t->degenerate, t->crossings, raw->qce_mean, fin->qce_mean, fin->ase_abs_mean);
+        printf("| %s | %.1f | %d | %d/%d (area %.3f) | %d | %d | %d | %.4f | %.4f | %.4f |\n", name, sec, iters, t->ok, nc,
+               t->area > 0 ? t->area_ok / t->area : 0, t->flipped, t->degenerate, t->crossings, raw->qce_mean,
+               fin->qce_mean, fin->ase_abs_mean);
     else
         printf("| %s | %.2f | – | – | %d | – | – | %.4f | %.4f | %.4f |\n", name, sec, raw->flipped, raw->qce_mean,
                raw->qce_mean, raw->ase_abs_mean);
     if (rep)
-        fprintf(stderr, "  %s: params/MLP %ld, pairs %ld, plateau %d, loss %.5f (cycle %.2e iso %.2e angle %.2e area %.2e barrier %.2e), cycle_rms %.4f, setup %.2fs, train %.2fs\n",
+        fprintf(stderr, "  %s: params/MLP %ld, pairs %ld, plateau %d, loss %.5f (cycle %.2e iso %.2e angle %.2e area %.2e barrier %.2e conf %.2e warm %.2e), solve %d steps E %.3e -> %.3e, heads %d, cycle_rms %.4f, setup %.2fs, train %.2fs\n",
                 name, rep->parameters, rep->pairs, rep->stopped_on_plateau, rep->loss, rep->loss_cycle,
-                rep->loss_iso, rep->loss_angle, rep->loss_area, rep->loss_barrier, rep->cycle_rms, rep->setup_seconds,
+                rep->loss_iso, rep->loss_angle, rep->loss_area, rep->loss_barrier, rep->loss_conf, rep->loss_warm, rep->solve_steps, rep->solve_energy_before, rep->solve_energy_after, rep->heads_improved, rep->cycle_rms, rep->setup_seconds,
                 rep->train_seconds);
     fflush(stdout);
 }
@@ -270,6 +275,13 @@ static void apply_key(param_net_options *o, const char *kv)
     else if (KEY("fold")) o->lambda_fold = v;
     else if (KEY("lr_final")) o->lr_final = v;
     else if (KEY("fold_eps")) o->fold_eps = v;
+    else if (KEY("conf")) o->lambda_conf = v;
+    else if (KEY("warm")) o->warm_iters = (int)v;
+    else if (KEY("lambda_warm")) o->lambda_warm = v;
+    else if (KEY("fourier")) o->fourier = (int)v;
+    else if (KEY("solve")) o->solve_steps = (int)v;
+    else if (KEY("heads")) o->chart_heads = (int)v;
+    else if (KEY("anchor")) o->solve_anchor = v;
     else if (KEY("refine")) g_refine.iters = (int)v;
     else if (KEY("refine_lr")) g_refine.lr = v;
     else if (KEY("refine_iso")) g_refine.lambda_iso = v;

@@ -150,6 +150,9 @@ int main(void)
         double *uvf = malloc(sizeof(double) * 6 * (size_t)g2->nf);
         param_net_options ok = o;
         ok.keep_model = 1;
+        /* The category path: charts the model never saw use the shared output
+         * layer, so train without per-chart heads to compare with it. */
+        ok.chart_heads = 0;
         CHECK_INT(param_net_flatten(g2, ch, 2, feat, FD, &ok, uvf, &rep), NEUV_OK);
         CHECK(corner_metrics(g2, uvf, &mt) == 0);
         printf("two charts, large features: qce_mean %.4f, flipped %d, cycle_rms %.4f\n", mt.qce_mean, mt.flipped,

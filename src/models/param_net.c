@@ -11,8 +11,10 @@
 #include "core/log.h"
 #include "core/rng.h"
 #include "core/timer.h"
+#include "flatten/lscm.h"
 #include "geometry/heat_geodesics.h"
 #include "losses/param_losses.h"
+#include "models/param_output_solve.h"
 #include "nn/adam.h"
 
 void param_net_default_options(param_net_options *o, param_preset preset)
@@ -41,12 +43,25 @@ void param_net_default_options(param_net_options *o, param_preset preset)
     o->iso_pairs = 4096;
     o->psi_mode = PARAM_PSI_POOLED;
     o->seed = 1;
+    /* The networks' own map (bench/RESULTS.md, "The networks' own map"):
+     * the first 200 steps also pull MLP_f towards each chart's LSCM map
+     * (weight 10), and after Adam the output layer is solved for the
+     * conformal energy, shared and per chart. */
+    o->warm_iters = 200;
+    o->lambda_warm = 10;
+    o->solve_steps = 6;
+    o->solve_anchor = 1e-3;
+    o->chart_heads = 1;
     if (preset == PARAM_PRESET_PAPER) {
         o->width = 464;
         o->depth = 8;
         o->iters = 2000;
         o->lr = 1e-3f;
         o->lambda[2] = 0.001;
+        /* the paper's training only */
+        o->warm_iters = 0;
+        o->solve_steps = 0;
+        o->chart_heads = 0;
     }
 }
 
@@ -65,6 +80,8 @@ typedef struct train_data {
     double *fcum;      /* nf: cumulative normalized area (face sampling) */
     param_corners corners;
     float *cos3d, *area3d;
+    float *frame_inv, *conf_w; /* nf by 4, nf: L_conf targets (when lambda_conf > 0) */
+    float *target;     /* nv by 2: the charts' LSCM maps in their frames (when warm_iters > 0) */
     geodesic_pairs pairs;   /* chart-vertex indices, normalized distances */
     float *feat;       /* nv by psi_dim per-vertex ψ (per-vertex mode) */
     float *psi;        /* n_charts by psi_dim (pooled mode) */
@@ -81,6 +98,7 @@ static void train_data_free(train_data *d)
 {
     free(d->vmesh); free(d->vchart); free(d->x); free(d->tri); free(d->fmesh); free(d->fchart);
     free(d->fcum); param_corners_free(&d->corners); free(d->cos3d); free(d->area3d);
+    free(d->frame_inv); free(d->conf_w); free(d->target);
     geodesic_pairs_free(&d->pairs); free(d->feat); free(d->psi); free(d->center); free(d->scale); free(d->rot);
     free(d->shift); free(d->mul);
     memset(d, 0, sizeof *d);
@@ -163,6 +181,66 @@ static void chart_frame(const neuv_mesh *sub, const double cen[3], double R[9])
     }
 }
 
+/* The warm-start target of one chart (param_net.h, warm_iters): its LSCM map
+ * scaled to the chart's 3D area, then turned (and mirrored if that fits
+ * better) and moved onto the orthographic projection of the chart in its
+ * frame, in normalized units. The projection is what a fresh MLP_f of the
+ * normalized position is closest to, so the target asks for the least change
+ * of orientation and place, the same way on every chart. A chart LSCM cannot
+ * flatten (a solver failure) gets the projection itself. */
+static neuv_status chart_lscm_target(const neuv_mesh *sub, const double cen[3], double scale, const double R[9],
+                                     float *target)
+{
+    int n = sub->nv;
+    double *uv = malloc(sizeof(double) * 2 * (size_t)n), *pj = malloc(sizeof(double) * 2 * (size_t)n);
+    if (!uv || !pj) { free(uv); free(pj); return neuv_fail_nomem("warm-start target"); }
+    for (int v = 0; v < n; v++) {
+        const double *p = sub->pos + 3 * v;
+        double d0 = p[0] - cen[0], d1 = p[1] - cen[1], d2 = p[2] - cen[2];
+        pj[2 * v] = scale * (R[0] * d0 + R[1] * d1 + R[2] * d2);
+        pj[2 * v + 1] = scale * (R[3] * d0 + R[4] * d1 + R[5] * d2);
+    }
+    neuv_status s = lscm(sub, uv);
+    if (s == NEUV_ERR_NOMEM) { free(uv); free(pj); return s; }
+    if (s != NEUV_OK) memcpy(uv, pj, sizeof(double) * 2 * (size_t)n);
+    double a3 = 0, auv = 0;
+    for (int f = 0; f < sub->nf; f++) {
+        const int *t = sub->tri + 3 * f;
+        const double *a = uv + 2 * t[0], *b = uv + 2 * t[1], *c = uv + 2 * t[2];
+        auv += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+        a3 += mesh_face_area(sub, f);
+    }
+    double k = fabs(auv) > 0 ? scale * sqrt(a3 / fabs(auv)) : 1;
+    double mu[2] = {0, 0}, mp[2] = {0, 0};
+    for (int v = 0; v < n; v++)
+        for (int q = 0; q < 2; q++) { mu[q] += uv[2 * v + q] / n; mp[q] += pj[2 * v + q] / n; }
+    /* Best rotation of (mirrored) centred UVs onto the centred projection. */
+    double best_res = INFINITY, best_c = 1, best_s = 0, best_m = 1;
+    for (int mir = 0; mir < 2; mir++) {
+        double sg = mir ? -1 : 1, sxx = 0, sxy = 0, res = 0;
+        for (int v = 0; v < n; v++) {
+            double u0 = sg * k * (uv[2 * v] - mu[0]), u1 = k * (uv[2 * v + 1] - mu[1]);
+            double p0 = pj[2 * v] - mp[0], p1 = pj[2 * v + 1] - mp[1];
+            sxx += u0 * p0 + u1 * p1;
+            sxy += u0 * p1 - u1 * p0;
+        }
+        double l = sqrt(sxx * sxx + sxy * sxy), c = l > 0 ? sxx / l : 1, sn = l > 0 ? sxy / l : 0;
+        for (int v = 0; v < n; v++) {
+            double u0 = sg * k * (uv[2 * v] - mu[0]), u1 = k * (uv[2 * v + 1] - mu[1]);
+            double e0 = c * u0 - sn * u1 - (pj[2 * v] - mp[0]), e1 = sn * u0 + c * u1 - (pj[2 * v + 1] - mp[1]);
+            res += e0 * e0 + e1 * e1;
+        }
+        if (res < best_res) { best_res = res; best_c = c; best_s = sn; best_m = sg; }
+    }
+    for (int v = 0; v < n; v++) {
+        double u0 = best_m * k * (uv[2 * v] - mu[0]), u1 = k * (uv[2 * v + 1] - mu[1]);
+        target[2 * v] = (float)(best_c * u0 - best_s * u1 + mp[0]);
+        target[2 * v + 1] = (float)(best_s * u0 + best_c * u1 + mp[1]);
+    }
+    free(uv); free(pj);
+    return NEUV_OK;
+}
+
 /* One chart: normalization, geodesic pairs, and its rows of the concatenated arrays. */
 static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, const param_net_options *o,
                              train_data *d, int *nv_used, int *nf_used)
@@ -228,6 +306,10 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
         for (int k = 0; k < 3; k++) d->tri[3 * (fb + f) + k] = vb + sub->tri[3 * f + k];
         d->fmesh[fb + f] = fmap[f];
         d->fchart[fb + f] = c;
+    }
+    if (d->target) {
+        s = chart_lscm_target(sub, cen, scale, R, d->target + 2 * (size_t)vb);
+        if (s != NEUV_OK) goto done;
     }
     *nv_used += sub->nv;
     *nf_used += sub->nf;
@@ -383,6 +465,15 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
     if (!d->rot || !d->vmesh || !d->vchart || !d->x || !d->tri || !d->fmesh || !d->fchart || !d->fcum || !d->cos3d ||
         !d->area3d || !d->center || !d->scale)
         return neuv_fail_nomem("training data");
+    if (!skip_pairs && o->warm_iters > 0 && o->lambda_warm > 0 && !o->init) {
+        d->target = malloc((size_t)nv * 2 * sizeof(float));
+        if (!d->target) return neuv_fail_nomem("warm-start targets");
+    }
+    if (!skip_pairs && (o->lambda_conf > 0 || o->solve_steps > 0)) {
+        d->frame_inv = malloc((size_t)m->nf * 4 * sizeof(float));
+        d->conf_w = malloc((size_t)m->nf * sizeof(float));
+        if (!d->frame_inv || !d->conf_w) return neuv_fail_nomem("conformal targets");
+    }
     int nv_used = 0, nf_used = 0;
     for (int c = 0; c < n_charts; c++) {
         neuv_status s = add_chart(m, face_chart, c, o, d, &nv_used, &nf_used);
@@ -396,6 +487,7 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
     if (!xn) return neuv_fail_nomem("training data");
     for (long i = 0; i < nv * 3; i++) xn[i] = d->x[i];
     param_corner_targets(xn, &d->corners, d->cos3d, d->area3d);
+    if (d->frame_inv) param_conformal_targets(xn, &d->corners, d->frame_inv, d->conf_w);
     free(xn);
     double acc = 0;
     for (int f = 0; f < d->nf; f++) { acc += d->area3d[f]; d->fcum[f] = acc; }
@@ -437,12 +529,13 @@ typedef struct step_buffers {
     float *g;            /* nq */
     float *orient;       /* nf */
     double *chart_sum;   /* n_charts */
+    int *vertex_rows;    /* nv: 0..nv-1 (the chart vertices among the step's points) */
 } step_buffers;
 
 static void step_buffers_free(step_buffers *b)
 {
     free(b->x); free(b->row); free(b->feat); free(b->pi); free(b->pj); free(b->g); free(b->orient);
-    free(b->chart_sum);
+    free(b->chart_sum); free(b->vertex_rows);
 }
 
 /* Fills one step's inputs: every chart vertex, then face points drawn anew. */
@@ -484,6 +577,9 @@ static neuv_status step_buffers_init(const train_data *d, const param_net_option
     b->g = malloc((size_t)nq * sizeof(float));
     b->orient = malloc((size_t)d->nf * sizeof(float));
     b->chart_sum = malloc((size_t)d->n_charts * sizeof(double));
+    b->vertex_rows = malloc((size_t)(d->nv > 0 ? d->nv : 1) * sizeof(int));
+    if (!b->vertex_rows) return neuv_fail_nomem("training step buffers");
+    for (int i = 0; i < d->nv; i++) b->vertex_rows[i] = i;
     if (o->psi_mode == PARAM_PSI_PER_VERTEX) b->feat = malloc((size_t)b->np * d->psi_dim * sizeof(float));
     if (!b->x || !b->row || !b->pi || !b->pj || !b->g || !b->orient || !b->chart_sum ||
         (o->psi_mode == PARAM_PSI_PER_VERTEX && !b->feat))
@@ -531,8 +627,8 @@ static float lr_cosine_at(void *user, long step, float base_lr)
 /* The networks' map at every chart vertex, each chart turned
  * counter-clockwise (mirror[c] = 1 when u was negated), as per-corner UVs in
  * mesh units; also the faces that are still clockwise and the RMS cycle error. */
-static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const train_data *d, int *mirror,
-                                double *corner_uv, int *flipped, double *cycle_rms)
+static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const train_data *d, int use_heads,
+                                int *mirror, double *corner_uv, int *flipped, double *cycle_rms)
 {
     int pooled = model->psi_mode == PARAM_PSI_POOLED;
     double *chart_sum = malloc((size_t)d->n_charts * sizeof(double));
@@ -541,8 +637,16 @@ static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const
     nn_ctx_reset(ctx);
     nn_tensor *x = nn_from(ctx, d->nv, 3, d->x);
     nn_tensor *psi = pooled ? nn_view(ctx, d->n_charts, d->psi_dim, d->psi) : nn_from(ctx, d->nv, d->psi_dim, d->feat);
-    nn_tensor *uv = param_mlp_forward(ctx, &model->f, x, psi, pooled ? d->vchart : NULL);
-    nn_tensor *xr = param_mlp_forward(ctx, &model->g, uv, psi, pooled ? d->vchart : NULL);
+    nn_tensor *uv;
+    if (use_heads && model->heads) {
+        /* Each chart through its own output layer (param_output_solve.h). */
+        nn_tensor *h = param_mlp_head_features(ctx, &model->f, x, psi, pooled ? d->vchart : NULL);
+        uv = h ? nn_new(ctx, d->nv, 2) : NULL;
+        if (uv) param_heads_apply(&model->f, h->data, d->nv, d->vchart, model->heads, uv->data);
+    } else {
+        uv = param_mlp_forward(ctx, &model->f, x, psi, pooled ? d->vchart : NULL);
+    }
+    nn_tensor *xr = uv ? param_mlp_forward(ctx, &model->g, uv, psi, pooled ? d->vchart : NULL) : NULL;
     if (!uv || !xr) { free(chart_sum); free(orient); return nn_ctx_status(ctx); }
     double cyc = 0;
     for (long i = 0; i < (long)d->nv * 3; i++) cyc += (double)(xr->data[i] - x->data[i]) * (xr->data[i] - x->data[i]);
@@ -571,7 +675,7 @@ static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const
 static neuv_status copy_weights(const param_net_model *from, param_net_model *to, int psi_dim)
 {
     if (from->psi_dim != psi_dim || from->params.n != to->params.n || from->psi_mode != to->psi_mode ||
-        from->f.width != to->f.width || from->f.depth != to->f.depth)
+        from->f.width != to->f.width || from->f.depth != to->f.depth || from->f.octaves != to->f.octaves)
         return neuv_fail(NEUV_ERR_INPUT, "fine-tuning: the model's networks (width %d, depth %d, psi %d) differ from "
                                          "these options (width %d, depth %d, psi %d)",
                          from->f.width, from->f.depth, from->psi_dim, to->f.width, to->f.depth, psi_dim);
@@ -615,9 +719,11 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
 
     rng r;
     rng_seed(&r, o->seed * 0x9E3779B97F4A7C15ull + 17);
-    s = param_mlp_create(&model->f, 3, d.psi_dim, o->width, 2, o->depth, o->leaky_slope, &r, &model->params, "f");
+    s = param_mlp_create(&model->f, 3, o->fourier, d.psi_dim, o->width, 2, o->depth, o->leaky_slope, &r,
+                         &model->params, "f");
     if (s == NEUV_OK)
-        s = param_mlp_create(&model->g, 2, d.psi_dim, o->width, 3, o->depth, o->leaky_slope, &r, &model->params, "g");
+        s = param_mlp_create(&model->g, 2, 0, d.psi_dim, o->width, 3, o->depth, o->leaky_slope, &r, &model->params,
+                             "g");
     model->psi_mode = o->psi_mode;
     if (s == NEUV_OK && o->init) s = copy_weights(o->init, model, d.psi_dim);
     if (s != NEUV_OK) goto done;
@@ -680,6 +786,17 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
                                             nn_view(ctx, d.nf, 1, b.orient), (float)o->fold_eps);
             loss = nn_add(ctx, loss, nn_scale(ctx, lfold, (float)o->lambda_fold));
         }
+        nn_tensor *lconf = NULL;
+        if (d.frame_inv && o->lambda_conf > 0) {
+            lconf = param_loss_conformal(ctx, uv, &d.corners, nn_view(ctx, d.nf, 4, d.frame_inv),
+                                         nn_view(ctx, d.nf, 1, d.conf_w), nn_view(ctx, d.nf, 1, b.orient));
+            loss = nn_add(ctx, loss, nn_scale(ctx, lconf, (float)o->lambda_conf));
+        }
+        nn_tensor *lwarm = NULL;
+        if (d.target && it < o->warm_iters && !o->init) { /* fine-tuning starts from the model instead */
+            lwarm = param_loss_cycle(ctx, nn_view(ctx, d.nv, 2, d.target), nn_gather_rows(ctx, uv, b.vertex_rows, d.nv));
+            loss = nn_add(ctx, loss, nn_scale(ctx, lwarm, (float)o->lambda_warm));
+        }
         nn_params_zero_grad(&model->params);
         s = nn_backward(ctx, loss);
         if (s != NEUV_OK) goto done;
@@ -689,17 +806,23 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         rep->loss_cycle = lc->data[0]; rep->loss_iso = li->data[0];
         rep->loss_angle = lang->data[0]; rep->loss_area = lar->data[0];
         rep->loss_barrier = lfold ? lfold->data[0] : 0;
+        rep->loss_conf = lconf ? lconf->data[0] : 0;
+        rep->loss_warm = lwarm ? lwarm->data[0] : 0;
         if (it % 10 == 0 || it == o->iters - 1)
             neuv_progress("param", (double)(it + 1) / o->iters, "iter %d loss %.5f", it + 1, rep->loss);
         /* Plateau: the mean loss of a window improved by less than plateau_tol on the
          * previous one. The angle/area weights change at warm-up, so windows restart there. */
-        if (it == o->warmup_iters && o->warmup_iters > 0) { window_sum = 0; prev_window = INFINITY; }
+        if ((it == o->warmup_iters && o->warmup_iters > 0) || (it == o->warm_iters && o->warm_iters > 0)) {
+            window_sum = 0;
+            prev_window = INFINITY;
+        }
         window_sum += rep->loss;
         int w = o->plateau_window > 0 ? o->plateau_window : 0;
         if (w > 0 && (it + 1) % w == 0) {
             double mean = window_sum / w;
             window_sum = 0;
-            if (it + 1 >= o->min_iters && it + 1 < o->iters && it + 1 > o->warmup_iters && prev_window - mean < o->plateau_tol * prev_window) {
+            if (it + 1 >= o->min_iters && it + 1 < o->iters && it + 1 > o->warmup_iters && it + 1 > o->warm_iters &&
+                prev_window - mean < o->plateau_tol * prev_window) {
                 rep->stopped_on_plateau = 1;
                 it++;
                 break;
@@ -708,12 +831,30 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         }
     }
     rep->iters = it;
+    if (o->solve_steps > 0 && o->depth >= 2) {
+        param_solve_data sd = {d.nv, d.nf, n_charts, d.x, d.x, 3, d.vchart, pooled ? d.psi : d.feat, d.psi_dim,
+                               !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w};
+        param_solve_report sr, hr;
+        memset(&hr, 0, sizeof hr);
+        s = param_output_solve_conformal(&model->f, &sd, o->solve_anchor, o->solve_steps, &sr);
+        if (s == NEUV_OK && o->chart_heads) {
+            model->heads = malloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
+            if (!model->heads) s = neuv_fail_nomem("chart heads");
+            else s = param_output_solve_heads(&model->f, &sd, o->solve_anchor, o->solve_steps, model->heads, &hr);
+        }
+        if (s == NEUV_OK) s = param_output_solve_inverse(&model->g, &model->f, model->heads, &sd);
+        if (s != NEUV_OK) goto done;
+        rep->solve_energy_before = sr.energy_before;
+        rep->solve_energy_after = model->heads ? hr.energy_after : sr.energy_after;
+        rep->solve_steps = sr.steps;
+        rep->heads_improved = hr.heads_improved;
+    }
     rep->train_seconds = now_seconds() - t1;
 
     /* Final map at the vertices, oriented counter-clockwise per chart. */
     model->mirror = malloc((size_t)n_charts * sizeof(int));
     if (!model->mirror) { s = neuv_fail_nomem("chart orientation"); goto done; }
-    s = map_vertices(ctx, model, &d, model->mirror, corner_uv, &rep->flipped, &rep->cycle_rms);
+    s = map_vertices(ctx, model, &d, 1, model->mirror, corner_uv, &rep->flipped, &rep->cycle_rms);
     if (s != NEUV_OK) goto done;
     model->center = d.center; d.center = NULL;
     model->scale = d.scale; d.scale = NULL;
@@ -762,7 +903,8 @@ neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, co
         ctx = nn_ctx_create(0);
         if (!ctx) s = neuv_fail_nomem("parameterization inference");
     }
-    if (s == NEUV_OK) s = map_vertices(ctx, model, &d, mirror, corner_uv, &rep->flipped, &rep->cycle_rms);
+    /* Charts the model never saw: the shared output layer, not its own charts' heads. */
+    if (s == NEUV_OK) s = map_vertices(ctx, model, &d, 0, mirror, corner_uv, &rep->flipped, &rep->cycle_rms);
     nn_ctx_free(ctx);
     train_data_free(&d);
     free(mirror);

@@ -52,6 +52,32 @@ typedef struct param_net_options {
     /* neuv extension (param_losses.h, bench/RESULTS.md): fold barrier weight
      * and area ratio; 0 weight: off. Zero on a map without folds. */
     double lambda_fold, fold_eps;
+    /* neuv extensions for a map that stands on its own (bench/RESULTS.md,
+     * "The networks' own map"):
+     *   lambda_conf  weight of the conformal energy L_conf (param_losses.h)
+     *                of MLP_f's map over every chart's own triangles (0: off)
+     *   warm_iters   the first steps also pull MLP_f's map at the chart
+     *                vertices towards the chart's LSCM map, laid in the
+     *                chart's frame (similarity-aligned to the projection on
+     *                the tangent plane, area of the chart), with weight
+     *                lambda_warm (0 iterations: off); the target is only a
+     *                start: the self-supervised losses train on alone after
+     *   fourier      octaves of the sin/cos encoding of MLP_f's input
+     *                (param_mlp.h; 0: none)
+     *   solve_steps  after Adam, Gauss-Newton steps on MLP_f's output layer
+     *                for the conformal energy of its map over the charts'
+     *                triangles, anchored with weight solve_anchor, then a
+     *                least-squares refit of MLP_f⁻¹'s output layer
+     *                (param_output_solve.h; 0: off) */
+    double lambda_conf;
+    int warm_iters;
+    double lambda_warm;
+    int fourier;
+    int solve_steps;
+    double solve_anchor;
+    /* With solve_steps: also one output layer per chart (param_output_solve.h),
+     * used for this mesh's charts (and a saved model's); 0: the shared one only. */
+    int chart_heads;
     double sigma;           /* L_iso pair radius in normalized units, 0.2 */
     double radius;          /* normalized geodesic radius of every chart, 0.6 */
     int iters;              /* iteration cap */
@@ -80,6 +106,11 @@ typedef struct param_net_report {
     long parameters;        /* per MLP (both have nearly the same count; this is MLP_f) */
     double loss, loss_cycle, loss_iso, loss_angle, loss_area; /* last step, unweighted terms */
     double loss_barrier;    /* last step, unweighted fold barrier (0 when inactive) */
+    double loss_conf;       /* last step, unweighted L_conf (0 when inactive) */
+    double loss_warm;       /* last warm-start step, unweighted distance to the LSCM target (0: none) */
+    double solve_energy_before, solve_energy_after; /* conformal energy around the output-layer solve */
+    int solve_steps;        /* Gauss-Newton steps taken (shared output layer) */
+    int heads_improved;     /* charts whose own output layer improved on the shared one */
     double setup_seconds, train_seconds, seconds;
     long pairs;             /* geodesic pairs under σ over all charts */
     int flipped;            /* faces whose UV orientation disagrees with their chart's */
@@ -125,6 +156,9 @@ struct param_net_model {
      * so that charts the model never saw get codes on the same scale; NULL in
      * models saved before it was kept (they map only their own charts). */
     double *psi_shift, *psi_mul;
+    /* n_charts by param_head_size(&f): each training chart's own output layer
+     * of MLP_f (param_output_solve.h), or NULL (the shared layer for all). */
+    float *heads;
 };
 
 void param_net_model_free(param_net_model *model);

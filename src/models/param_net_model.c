@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "models/param_net.h"
+#include "models/param_output_solve.h"
 
 void param_net_model_free(param_net_model *model)
 {
@@ -11,7 +12,7 @@ void param_net_model_free(param_net_model *model)
     param_mlp_free(&model->g);
     nn_params_free(&model->params);
     free(model->psi); free(model->center); free(model->scale); free(model->rot); free(model->mirror);
-    free(model->psi_shift); free(model->psi_mul);
+    free(model->psi_shift); free(model->psi_mul); free(model->heads);
     free(model);
 }
 
@@ -29,9 +30,23 @@ static neuv_status run_net(const param_net_model *model, const param_mlp *net, i
     if (!ctx || !row) { nn_ctx_free(ctx); free(row); return neuv_fail_nomem("parameterization inference"); }
     nn_tensor *x = nn_from(ctx, n, in_dim, in);
     nn_tensor *psi = nn_view(ctx, 1, model->psi_dim, model->psi + (size_t)chart_id * model->psi_dim);
-    nn_tensor *y = param_mlp_forward(ctx, net, x, psi, row);
-    neuv_status s = y ? NEUV_OK : nn_ctx_status(ctx);
-    if (y) for (long i = 0; i < (long)n * out_dim; i++) out[i] = y->data[i];
+    neuv_status s = NEUV_OK;
+    if (net == &model->f && model->heads) {
+        /* The chart's own output layer (param_output_solve.h); row is all chart_id's row 0. */
+        nn_tensor *h = param_mlp_head_features(ctx, net, x, psi, row);
+        int *head_of = h ? malloc(sizeof(int) * (size_t)(n > 0 ? n : 1)) : NULL;
+        if (!h) s = nn_ctx_status(ctx);
+        else if (!head_of) s = neuv_fail_nomem("parameterization inference");
+        else {
+            for (int i = 0; i < n; i++) head_of[i] = chart_id;
+            param_heads_apply(net, h->data, n, head_of, model->heads, out);
+        }
+        free(head_of);
+    } else {
+        nn_tensor *y = param_mlp_forward(ctx, net, x, psi, row);
+        s = y ? NEUV_OK : nn_ctx_status(ctx);
+        if (y) for (long i = 0; i < (long)n * out_dim; i++) out[i] = y->data[i];
+    }
     nn_ctx_free(ctx);
     free(row);
     return s;

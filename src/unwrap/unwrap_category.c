@@ -170,6 +170,8 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     pp.psi_noise = CATEGORY_PSI_NOISE;
     pp.iters = o.iters > 0 ? o.iters : 2 * pp.iters;
     pp.min_iters = pp.iters;
+    /* Unseen charts have no head of their own: the shared output layer is what generalizes. */
+    pp.chart_heads = 0;
     param_net_report pr;
     memset(&pr, 0, sizeof pr);
     s = param_net_flatten(joined, joined_chart, joined_charts, joined_features, sh[0].feature_dim, &pp, corner_uv, &pr);

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/json_writer.h"
 #include "core/rng.h"
+#include "models/param_output_solve.h"
 #include "nn/checkpoint.h"
 #include "unwrap/unwrap_internal.h"
 
@@ -174,6 +175,8 @@ static char *header_json(const unwrap_model *m)
         json_key(&w, "param_psi_dim"); json_int(&w, p->psi_dim);
         json_key(&w, "param_width"); json_int(&w, p->f.width);
         json_key(&w, "param_depth"); json_int(&w, p->f.depth);
+        json_key(&w, "param_fourier"); json_int(&w, p->f.octaves);
+        json_key(&w, "param_heads"); json_int(&w, p->heads && p->n_charts > 0 ? 1 : 0);
         json_key(&w, "param_slope"); json_number(&w, p->f.slope);
     }
     json_key(&w, "patchnet"); json_int(&w, m->patchnet != NULL);
@@ -232,6 +235,8 @@ static int push_surface(tensor_list *l, const unwrap_model *m)
         } else bad = 1;
         bad |= push_ints(l, "param.mirror", p->n_charts, 1, p->mirror);
         if (!bad) bad |= list_push(l, "param.psi", p->n_charts, p->psi_dim, p->psi, 0);
+        if (!bad && p->heads)
+            bad |= list_push(l, "param.heads", p->n_charts, param_head_size(&p->f), p->heads, 0);
     }
     return bad;
 }
@@ -385,13 +390,17 @@ static neuv_status load_psi_norm(const nn_checkpoint *c, const char *h, int requ
 
 static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_model *m)
 {
-    long long nch, psi, width, depth;
+    long long nch, psi, width, depth, fourier = 0;
     neuv_status s;
     if ((s = header_int(h, "param_charts", m->category ? 0 : 1, m->n_charts, &nch)) ||
         (s = header_int(h, "param_psi_dim", 1, 1 << 16, &psi)) ||
         (s = header_int(h, "param_width", 1, 1 << 14, &width)) ||
         (s = header_int(h, "param_depth", 1, 64, &depth)))
         return s;
+    /* Models saved before the input encoding have none. */
+    if (header_value(h, "param_fourier") && (s = header_int(h, "param_fourier", 0, 16, &fourier))) return s;
+    long long heads = 0; /* per-chart output layers (absent in older models) */
+    if (header_value(h, "param_heads") && (s = header_int(h, "param_heads", 0, 1, &heads))) return s;
     const char *sv = header_value(h, "param_slope");
     char *end;
     double slope = sv ? strtod(sv, &end) : NAN;
@@ -417,14 +426,24 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     }
     rng r;
     rng_seed(&r, 1); /* the initial values are overwritten by the file's */
-    s = param_mlp_create(&p->f, 3, (int)psi, (int)width, 2, (int)depth, (float)slope, &r, &p->params, "f");
-    if (!s) s = param_mlp_create(&p->g, 2, (int)psi, (int)width, 3, (int)depth, (float)slope, &r, &p->params, "g");
+    s = param_mlp_create(&p->f, 3, (int)fourier, (int)psi, (int)width, 2, (int)depth, (float)slope, &r, &p->params,
+                         "f");
+    if (!s) s = param_mlp_create(&p->g, 2, 0, (int)psi, (int)width, 3, (int)depth, (float)slope, &r, &p->params, "g");
     if (!s) s = check_params(c, &p->params);
     if (!s) s = load_psi_norm(c, h, m->category, p);
     if (n == 0) { free(frame); return s; }
     if (!s) s = read_doubles(c, "param.frame", n, 13, frame);
     if (!s) s = read_ints(c, "param.mirror", n, 1, 0, 1, p->mirror);
     const nn_checkpoint_tensor *t;
+    if (!s && heads) {
+        int hs = param_head_size(&p->f);
+        s = want_tensor(c, "param.heads", n, hs, &t);
+        if (!s) p->heads = malloc(sizeof(float) * (size_t)n * hs);
+        if (!s && !p->heads) s = neuv_fail_nomem("the model");
+        if (!s) memcpy(p->heads, t->data, sizeof(float) * (size_t)n * hs);
+        for (long i = 0; !s && i < (long)n * hs; i++)
+            if (!isfinite(p->heads[i])) s = neuv_fail(NEUV_ERR_INPUT, "model tensor \"param.heads\" holds a non-finite value");
+    }
     if (!s) s = want_tensor(c, "param.psi", n, (int)psi, &t);
     if (!s) {
         memcpy(p->psi, t->data, sizeof(float) * (size_t)n * (size_t)psi);

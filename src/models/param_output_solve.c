@@ -1,0 +1,560 @@
+/* Exact output-layer solves of the parameterization networks (param_output_solve.h). */
+#include "models/param_output_solve.h"
+
+#include <cblas.h>
+#include <lapacke.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+
+int param_head_size(const param_mlp *f)
+{
+    return 2 * (param_mlp_head_width(f) + 1);
+}
+
+/* Features of `m` at nv inputs (in: nv by in_dim), as doubles: the last
+ * hidden layer (width), or with heads every hidden layer (param_mlp_head_width). */
+static neuv_status hidden_at(const param_mlp *m, const param_solve_data *d, const float *in, int in_dim, int heads,
+                             double *phi)
+{
+    nn_ctx *ctx = nn_ctx_create(0);
+    if (!ctx) return neuv_fail_nomem("output-layer solve");
+    nn_tensor *x = nn_from(ctx, d->nv, in_dim, in);
+    int rows = d->psi_per_vertex ? d->nv : d->n_charts;
+    nn_tensor *psi = d->psi_dim > 0 ? nn_view(ctx, rows, d->psi_dim, (float *)d->psi) : NULL;
+    const int *row = d->psi_per_vertex ? NULL : d->vchart;
+    nn_tensor *h = heads ? param_mlp_head_features(ctx, m, x, psi, row) : param_mlp_hidden(ctx, m, x, psi, row);
+    neuv_status s = h ? NEUV_OK : nn_ctx_status(ctx);
+    if (h)
+        for (long i = 0; i < (long)d->nv * h->cols; i++) phi[i] = h->data[i];
+    nn_ctx_free(ctx);
+    return s;
+}
+
+/* Normal equations of a least-squares problem built block by block:
+ * rows r (n wide) with constants c, minimizing Σ (r·θ + c)²; g = −Σ r c. */
+typedef struct normal_eq {
+    int n, cap, used;
+    double *a, *g;     /* n by n (upper triangle), n */
+    double *rows, *c;  /* cap by n, cap */
+} normal_eq;
+
+static void normal_eq_free(normal_eq *q)
+{
+    free(q->a); free(q->g); free(q->rows); free(q->c);
+    memset(q, 0, sizeof *q);
+}
+
+static neuv_status normal_eq_init(normal_eq *q, int n)
+{
+    memset(q, 0, sizeof *q);
+    q->n = n;
+    q->cap = 1024;
+    q->a = calloc((size_t)n * n, sizeof(double));
+    q->g = calloc((size_t)n, sizeof(double));
+    q->rows = calloc((size_t)q->cap * n, sizeof(double));
+    q->c = calloc((size_t)q->cap, sizeof(double));
+    if (!q->a || !q->g || !q->rows || !q->c) { normal_eq_free(q); return neuv_fail_nomem("output-layer solve"); }
+    return NEUV_OK;
+}
+
+static void normal_eq_flush(normal_eq *q)
+{
+    if (q->used == 0) return;
+    cblas_dsyrk(CblasRowMajor, CblasUpper, CblasTrans, q->n, q->used, 1.0, q->rows, q->n, 1.0, q->a, q->n);
+    cblas_dgemv(CblasRowMajor, CblasTrans, q->used, q->n, -1.0, q->rows, q->n, q->c, 1, 1.0, q->g, 1);
+    q->used = 0;
+}
+
+/* The next row to fill (zeroed); its constant goes to *c. */
+static double *normal_eq_row(normal_eq *q, double **c)
+{
+    if (q->used == q->cap) normal_eq_flush(q);
+    double *r = q->rows + (size_t)q->used * q->n;
+    memset(r, 0, sizeof(double) * (size_t)q->n);
+    *c = q->c + q->used;
+    **c = 0;
+    q->used++;
+    return r;
+}
+
+/* Solves (A + ridge) X = B for nrhs right-hand sides b (n by nrhs,
+ * row-major; NULL: q->g), in place; ridge = 1e-9 of the mean diagonal.
+ * Returns 0, or -1 when the system is not positive definite. */
+static int normal_eq_solve(normal_eq *q, int nrhs, double *b)
+{
+    normal_eq_flush(q);
+    double tr = 0;
+    for (int i = 0; i < q->n; i++) tr += q->a[(size_t)i * q->n + i];
+    double ridge = 1e-9 * (tr > 0 ? tr / q->n : 1) + 1e-300;
+    for (int i = 0; i < q->n; i++) q->a[(size_t)i * q->n + i] += ridge;
+    if (!b) { b = q->g; nrhs = 1; }
+    return LAPACKE_dposv(LAPACK_ROW_MAJOR, 'U', q->n, nrhs, q->a, q->n, b, nrhs) == 0 ? 0 : -1;
+}
+
+/* Faces and vertices of one block (all charts, or one). */
+typedef struct block {
+    const int *faces, *verts;
+    int nf, nv;
+} block;
+
+/* z = φ̂ θ and uv = tanh(z) at the block's vertices (arrays indexed by vertex). */
+static void map_block(const double *phi, int H, const double *theta, const block *b, double *z, double *uv)
+{
+    int K = H + 1;
+    for (int k = 0; k < b->nv; k++) {
+        int v = b->verts[k];
+        const double *p = phi + (size_t)v * H;
+        for (int j = 0; j < 2; j++) {
+            const double *t = theta + (size_t)j * K;
+            double acc = t[H];
+            for (int i = 0; i < H; i++) acc += p[i] * t[i];
+            z[2 * v + j] = acc;
+            uv[2 * v + j] = tanh(acc);
+        }
+    }
+}
+
+/* Per vertex of a face: the weights of u_v in ∂u/∂x (wx) and ∂u/∂y (wy) in
+ * the face's frame (J = [u1 − u0, u2 − u0] B). */
+static void face_weights(const float *B, double wx[3], double wy[3])
+{
+    wx[0] = -(double)B[0] - B[2]; wx[1] = B[0]; wx[2] = B[2];
+    wy[0] = -(double)B[1] - B[3]; wy[1] = B[1]; wy[2] = B[3];
+}
+
+/* Conformal energy of the block's faces and the count of faces whose UV
+ * orientation disagrees with their chart's σ. */
+static double block_energy(const param_solve_data *d, const block *b, const double *uv, const int *sigma, int *flips)
+{
+    double e = 0;
+    int fl = 0;
+    for (int k = 0; k < b->nf; k++) {
+        int f = b->faces[k];
+        const int *t = d->tri + 3 * f;
+        double wx[3], wy[3], J[4] = {0, 0, 0, 0};
+        face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
+        for (int q = 0; q < 3; q++) {
+            J[0] += wx[q] * uv[2 * t[q]];
+            J[1] += wy[q] * uv[2 * t[q]];
+            J[2] += wx[q] * uv[2 * t[q] + 1];
+            J[3] += wy[q] * uv[2 * t[q] + 1];
+        }
+        double sg = sigma[d->fchart[f]], r1 = J[0] - sg * J[3], r2 = J[1] + sg * J[2];
+        e += d->face_w[f] * (r1 * r1 + r2 * r2);
+        if (d->face_w[f] > 0 && sg * (J[0] * J[3] - J[1] * J[2]) <= 0) fl++;
+    }
+    if (flips) *flips = fl;
+    return e;
+}
+
+static double block_anchor(const block *b, const double *uv, const double *uv0, const double *mv)
+{
+    double e = 0;
+    for (int k = 0; k < b->nv; k++) {
+        int v = b->verts[k];
+        double du = uv[2 * v] - uv0[2 * v], dv = uv[2 * v + 1] - uv0[2 * v + 1];
+        e += mv[v] * (du * du + dv * dv);
+    }
+    return e;
+}
+
+/* Gauss-Newton system at (z, uv): per face the two Cauchy-Riemann rows, per
+ * vertex the two anchor rows, each linearized through tanh:
+ * u_v ≈ s_v φ̂_v·θ_u + κ_v with s = 1 − uv², κ = uv − s z. */
+static void gauss_newton_rows(const param_solve_data *d, const block *b, const double *phi, int H, const double *z,
+                              const double *uv, const double *uv0, const double *mv, const int *sigma, double anchor,
+                              normal_eq *q)
+{
+    int K = H + 1;
+    for (int k = 0; k < b->nf; k++) {
+        int f = b->faces[k];
+        double w = sqrt(d->face_w[f]);
+        if (!(w > 0)) continue;
+        const int *t = d->tri + 3 * f;
+        double sg = sigma[d->fchart[f]], wx[3], wy[3], *c1, *c2;
+        face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
+        double *r1 = normal_eq_row(q, &c1), *r2 = normal_eq_row(q, &c2);
+        /* r1 = ∂u/∂x − σ ∂v/∂y, r2 = ∂u/∂y + σ ∂v/∂x */
+        for (int j = 0; j < 3; j++) {
+            int v = t[j];
+            const double *p = phi + (size_t)v * H;
+            double su = 1 - uv[2 * v] * uv[2 * v], sv = 1 - uv[2 * v + 1] * uv[2 * v + 1];
+            double ku = uv[2 * v] - su * z[2 * v], kv = uv[2 * v + 1] - sv * z[2 * v + 1];
+            double a1 = w * wx[j] * su, a2 = w * wy[j] * su, b1 = -sg * w * wy[j] * sv, b2 = sg * w * wx[j] * sv;
+            for (int i = 0; i < H; i++) {
+                r1[i] += a1 * p[i]; r2[i] += a2 * p[i];
+                r1[K + i] += b1 * p[i]; r2[K + i] += b2 * p[i];
+            }
+            r1[H] += a1; r2[H] += a2; r1[K + H] += b1; r2[K + H] += b2;
+            *c1 += w * wx[j] * ku - sg * w * wy[j] * kv;
+            *c2 += w * wy[j] * ku + sg * w * wx[j] * kv;
+        }
+    }
+    for (int k = 0; k < b->nv; k++) {
+        int v = b->verts[k];
+        double w = sqrt(anchor * mv[v]);
+        if (!(w > 0)) continue;
+        const double *p = phi + (size_t)v * H;
+        for (int j = 0; j < 2; j++) {
+            double *c, *r = normal_eq_row(q, &c);
+            double s = 1 - uv[2 * v + j] * uv[2 * v + j], kap = uv[2 * v + j] - s * z[2 * v + j];
+            for (int i = 0; i < H; i++) r[j * K + i] = w * s * p[i];
+            r[j * K + H] = w * s;
+            *c = w * (kap - uv0[2 * v + j]);
+        }
+    }
+}
+
+/* Working state shared by the shared and per-chart solves. */
+typedef struct solve_state {
+    const param_solve_data *d;
+    int H;
+    double *phi;             /* nv by H */
+    double *z, *uv, *uv0;    /* nv by 2 */
+    double *tz, *tuv;        /* nv by 2, trial */
+    double *mv;              /* nv anchor weights (pins included) */
+    int *sigma;              /* n_charts */
+    int *face_start, *face_list, *vert_start, *vert_list; /* per-chart CSR */
+    int *all_faces, *all_verts;
+} solve_state;
+
+static void solve_state_free(solve_state *st)
+{
+    free(st->phi); free(st->z); free(st->uv); free(st->uv0); free(st->tz); free(st->tuv); free(st->mv);
+    free(st->sigma); free(st->face_start); free(st->face_list); free(st->vert_start); free(st->vert_list);
+    free(st->all_faces); free(st->all_verts);
+}
+
+/* Each chart holds two far-apart vertices of uv0 (see the header). */
+static void add_pins(solve_state *st, double anchor)
+{
+    const param_solve_data *d = st->d;
+    for (int c = 0; c < d->n_charts; c++) {
+        const int *vl = st->vert_list + st->vert_start[c];
+        int n = st->vert_start[c + 1] - st->vert_start[c];
+        if (n == 0) continue;
+        double share = 0, cu = 0, cv = 0, best = -1;
+        for (int k = st->face_start[c]; k < st->face_start[c + 1]; k++) share += d->face_w[st->face_list[k]];
+        for (int k = 0; k < n; k++) { cu += st->uv0[2 * vl[k]] / n; cv += st->uv0[2 * vl[k] + 1] / n; }
+        int p1 = vl[0], p2 = vl[0];
+        for (int k = 0; k < n; k++) {
+            double du = st->uv0[2 * vl[k]] - cu, dv = st->uv0[2 * vl[k] + 1] - cv;
+            if (du * du + dv * dv > best) { best = du * du + dv * dv; p1 = vl[k]; }
+        }
+        best = -1;
+        for (int k = 0; k < n; k++) {
+            double du = st->uv0[2 * vl[k]] - st->uv0[2 * p1], dv = st->uv0[2 * vl[k] + 1] - st->uv0[2 * p1 + 1];
+            if (du * du + dv * dv > best) { best = du * du + dv * dv; p2 = vl[k]; }
+        }
+        st->mv[p1] += 10 * share / anchor;
+        if (p2 != p1) st->mv[p2] += 10 * share / anchor;
+    }
+}
+
+/* Hidden features, the map of the shared layer (uv0), chart orientations,
+ * anchor weights and per-chart lists. */
+static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const param_solve_data *d, double anchor,
+                                    int heads, const double *theta)
+{
+    memset(st, 0, sizeof *st);
+    st->d = d;
+    int H = st->H = heads ? param_mlp_head_width(f) : f->width, nv = d->nv, nc = d->n_charts > 0 ? d->n_charts : 1;
+    size_t v2 = sizeof(double) * 2 * (size_t)(nv > 0 ? nv : 1);
+    st->phi = malloc(sizeof(double) * (size_t)(nv > 0 ? nv : 1) * H);
+    st->z = malloc(v2); st->uv = malloc(v2); st->uv0 = malloc(v2); st->tz = malloc(v2); st->tuv = malloc(v2);
+    st->mv = calloc((size_t)(nv > 0 ? nv : 1), sizeof(double));
+    st->sigma = malloc(sizeof(int) * (size_t)nc);
+    st->face_start = calloc((size_t)nc + 1, sizeof(int));
+    st->vert_start = calloc((size_t)nc + 1, sizeof(int));
+    st->face_list = malloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
+    st->vert_list = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+    st->all_faces = malloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
+    st->all_verts = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+    double *csum = calloc((size_t)nc, sizeof(double));
+    if (!st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->face_start ||
+        !st->vert_start || !st->face_list || !st->vert_list || !st->all_faces || !st->all_verts || !csum) {
+        free(csum);
+        return neuv_fail_nomem("output-layer solve");
+    }
+    for (int f0 = 0; f0 < d->nf; f0++) { st->face_start[d->fchart[f0] + 1]++; st->all_faces[f0] = f0; }
+    for (int v = 0; v < nv; v++) { st->vert_start[d->vchart[v] + 1]++; st->all_verts[v] = v; }
+    for (int c = 0; c < nc; c++) { st->face_start[c + 1] += st->face_start[c]; st->vert_start[c + 1] += st->vert_start[c]; }
+    int *fp = malloc(sizeof(int) * (size_t)nc), *vp = malloc(sizeof(int) * (size_t)nc);
+    if (!fp || !vp) { free(fp); free(vp); free(csum); return neuv_fail_nomem("output-layer solve"); }
+    memcpy(fp, st->face_start, sizeof(int) * (size_t)nc);
+    memcpy(vp, st->vert_start, sizeof(int) * (size_t)nc);
+    for (int f0 = 0; f0 < d->nf; f0++) st->face_list[fp[d->fchart[f0]]++] = f0;
+    for (int v = 0; v < nv; v++) st->vert_list[vp[d->vchart[v]]++] = v;
+    free(fp); free(vp);
+    neuv_status s = hidden_at(f, d, d->f_in, d->f_in_dim, heads, st->phi);
+    if (s != NEUV_OK) { free(csum); return s; }
+    block all = {st->all_faces, st->all_verts, d->nf, nv};
+    map_block(st->phi, H, theta, &all, st->z, st->uv);
+    memcpy(st->uv0, st->uv, v2);
+    /* Each chart keeps the orientation it has (a network may map a chart mirrored). */
+    for (int f0 = 0; f0 < d->nf; f0++) {
+        const int *t = d->tri + 3 * f0;
+        const double *a = st->uv + 2 * t[0], *b = st->uv + 2 * t[1], *c = st->uv + 2 * t[2];
+        csum[d->fchart[f0]] += (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        for (int k = 0; k < 3; k++) st->mv[t[k]] += d->face_w[f0] / 3;
+    }
+    for (int c = 0; c < nc; c++) st->sigma[c] = csum[c] < 0 ? -1 : 1;
+    free(csum);
+    add_pins(st, anchor);
+    return NEUV_OK;
+}
+
+/* Gauss-Newton on theta for one block, from the state's z/uv at theta. A
+ * step is halved until the energy falls; the result is the lowest-energy
+ * iterate that flips no more faces than uv0 (the start when none does).
+ * Returns the steps up to that iterate, or -1 on allocation failure. */
+static int solve_block(solve_state *st, const block *b, double anchor, int steps, double *theta)
+{
+    const param_solve_data *d = st->d;
+    int H = st->H, n = 2 * (H + 1), flips0, taken = 0, best_step = 0;
+    double *trial = malloc(sizeof(double) * (size_t)n), *best = malloc(sizeof(double) * (size_t)n);
+    if (!trial || !best) { free(trial); free(best); return -1; }
+    memcpy(best, theta, sizeof(double) * (size_t)n);
+    double e = block_energy(d, b, st->uv, st->sigma, &flips0) + anchor * block_anchor(b, st->uv, st->uv0, st->mv);
+    for (int step = 0; step < steps; step++) {
+        normal_eq q;
+        if (normal_eq_init(&q, n) != NEUV_OK) { free(trial); free(best); return -1; }
+        gauss_newton_rows(d, b, st->phi, H, st->z, st->uv, st->uv0, st->mv, st->sigma, anchor, &q);
+        if (normal_eq_solve(&q, 0, NULL) != 0) { normal_eq_free(&q); break; }
+        int kept = 0, fl = 0;
+        for (double alpha = 1; alpha > 1.0 / 64 && !kept; alpha *= 0.5) {
+            for (int i = 0; i < n; i++) trial[i] = theta[i] + alpha * (q.g[i] - theta[i]);
+            map_block(st->phi, H, trial, b, st->tz, st->tuv);
+            double et = block_energy(d, b, st->tuv, st->sigma, &fl) + anchor * block_anchor(b, st->tuv, st->uv0, st->mv);
+            if (isfinite(et) && et < e) {
+                memcpy(theta, trial, sizeof(double) * (size_t)n);
+                for (int k = 0; k < b->nv; k++) {
+                    int v = b->verts[k];
+                    for (int j = 0; j < 2; j++) { st->z[2 * v + j] = st->tz[2 * v + j]; st->uv[2 * v + j] = st->tuv[2 * v + j]; }
+                }
+                e = et;
+                kept = 1;
+            }
+        }
+        normal_eq_free(&q);
+        if (!kept) break;
+        taken++;
+        if (fl <= flips0) { memcpy(best, theta, sizeof(double) * (size_t)n); best_step = taken; }
+    }
+    if (best_step != taken) { /* back to the best valid iterate */
+        memcpy(theta, best, sizeof(double) * (size_t)n);
+        map_block(st->phi, H, theta, b, st->z, st->uv);
+    }
+    free(trial); free(best);
+    return best_step;
+}
+
+static void theta_from_layer(const nn_linear *l, int H, double *theta)
+{
+    for (int j = 0; j < 2; j++) {
+        for (int i = 0; i < H; i++) theta[(size_t)j * (H + 1) + i] = l->w->data[(size_t)i * 2 + j];
+        theta[(size_t)j * (H + 1) + H] = l->b->data[j];
+    }
+}
+
+static neuv_status check_f(const param_mlp *f, double anchor)
+{
+    if (f->depth < 2 || f->out != 2 || !(anchor > 0))
+        return neuv_fail(NEUV_ERR_INPUT, "output-layer solve needs a hidden layer, 2 outputs and an anchor > 0");
+    return NEUV_OK;
+}
+
+neuv_status param_output_solve_conformal(param_mlp *f, const param_solve_data *d, double anchor, int steps,
+                                         param_solve_report *rep)
+{
+    param_solve_report local;
+    if (!rep) rep = &local;
+    memset(rep, 0, sizeof *rep);
+    neuv_status s = check_f(f, anchor);
+    if (s != NEUV_OK) return s;
+    int H = f->width, n = 2 * (H + 1);
+    nn_linear *out = &f->rest[f->depth - 2];
+    double *theta = malloc(sizeof(double) * (size_t)n);
+    solve_state st;
+    if (!theta) return neuv_fail_nomem("output-layer solve");
+    theta_from_layer(out, H, theta);
+    s = solve_state_init(&st, f, d, anchor, 0, theta);
+    if (s == NEUV_OK) {
+        block all = {st.all_faces, st.all_verts, d->nf, d->nv};
+        rep->energy_before = block_energy(d, &all, st.uv, st.sigma, NULL);
+        int taken = solve_block(&st, &all, anchor, steps, theta);
+        if (taken < 0) s = neuv_fail_nomem("output-layer solve");
+        else {
+            rep->steps = taken;
+            rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL);
+            for (int j = 0; j < 2; j++) {
+                for (int i = 0; i < H; i++) out->w->data[(size_t)i * 2 + j] = (float)theta[(size_t)j * (H + 1) + i];
+                out->b->data[j] = (float)theta[(size_t)j * (H + 1) + H];
+            }
+        }
+    }
+    solve_state_free(&st);
+    free(theta);
+    return s;
+}
+
+neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data *d, double anchor, int steps,
+                                     float *heads, param_solve_report *rep)
+{
+    param_solve_report local;
+    if (!rep) rep = &local;
+    memset(rep, 0, sizeof *rep);
+    neuv_status s = check_f(f, anchor);
+    if (s != NEUV_OK) return s;
+    /* A head reads every hidden layer; it starts as the shared output layer
+     * (zero weight on all but the last hidden layer, which comes last). */
+    int W = f->width, H = param_mlp_head_width(f), n = 2 * (H + 1), off = H - W;
+    double *shared = calloc((size_t)n, sizeof(double)), *theta = malloc(sizeof(double) * (size_t)n);
+    double *last = malloc(sizeof(double) * 2 * (size_t)(W + 1));
+    solve_state st;
+    if (!shared || !theta || !last) { free(shared); free(theta); free(last); return neuv_fail_nomem("output-layer solve"); }
+    theta_from_layer(&f->rest[f->depth - 2], W, last);
+    for (int j = 0; j < 2; j++) {
+        for (int i = 0; i < W; i++) shared[(size_t)j * (H + 1) + off + i] = last[(size_t)j * (W + 1) + i];
+        shared[(size_t)j * (H + 1) + H] = last[(size_t)j * (W + 1) + W];
+    }
+    free(last);
+    s = solve_state_init(&st, f, d, anchor, 1, shared);
+    if (s == NEUV_OK) {
+        block all = {st.all_faces, st.all_verts, d->nf, d->nv};
+        rep->energy_before = block_energy(d, &all, st.uv, st.sigma, NULL);
+    }
+    for (int c = 0; s == NEUV_OK && c < d->n_charts; c++) {
+        block b = {st.face_list + st.face_start[c], st.vert_list + st.vert_start[c],
+                   st.face_start[c + 1] - st.face_start[c], st.vert_start[c + 1] - st.vert_start[c]};
+        memcpy(theta, shared, sizeof(double) * (size_t)n);
+        int taken = b.nf > 0 ? solve_block(&st, &b, anchor, steps, theta) : 0;
+        if (taken < 0) { s = neuv_fail_nomem("output-layer solve"); break; }
+        rep->heads_improved += taken > 0;
+        rep->steps += taken;
+        for (int i = 0; i < n; i++) heads[(size_t)c * n + i] = (float)theta[i];
+    }
+    if (s == NEUV_OK) {
+        block all = {st.all_faces, st.all_verts, d->nf, d->nv};
+        rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL);
+    }
+    solve_state_free(&st);
+    free(shared); free(theta);
+    return s;
+}
+
+void param_heads_apply(const param_mlp *f, const float *hidden, int n, const int *head_of, const float *heads,
+                       float *uv)
+{
+    int H = param_mlp_head_width(f), K = H + 1, hs = 2 * K;
+    for (int i = 0; i < n; i++) {
+        const float *p = hidden + (size_t)i * H, *t = heads + (size_t)head_of[i] * hs;
+        for (int j = 0; j < 2; j++) {
+            double acc = t[j * K + H];
+            for (int k = 0; k < H; k++) acc += (double)p[k] * t[j * K + k];
+            uv[2 * i + j] = (float)tanh(acc);
+        }
+    }
+}
+
+neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const float *heads,
+                                       const param_solve_data *d)
+{
+    if (g->depth < 2 || g->out != 3 || f->depth < 2)
+        return neuv_fail(NEUV_ERR_INPUT, "output-layer solve needs hidden layers (inverse: 3 outputs)");
+    int H = g->width, K = H + 1, nv = d->nv, F = heads ? param_mlp_head_width(f) : f->width;
+    nn_linear *out = &g->rest[g->depth - 2];
+    float *uvf = malloc(sizeof(float) * 2 * (size_t)nv), *hf = malloc(sizeof(float) * (size_t)nv * F);
+    double *phi_f = malloc(sizeof(double) * (size_t)nv * F), *phi = malloc(sizeof(double) * (size_t)nv * H);
+    double *rhs = calloc((size_t)K * 3, sizeof(double));
+    normal_eq q = {0};
+    neuv_status s = NEUV_OK;
+    if (!uvf || !hf || !phi_f || !phi || !rhs) { s = neuv_fail_nomem("output-layer solve"); goto done; }
+    /* MLP_f's outputs at the vertices, then MLP_f⁻¹'s hidden layer there. */
+    if ((s = hidden_at(f, d, d->f_in, d->f_in_dim, heads != NULL, phi_f)) != NEUV_OK) goto done;
+    for (long i = 0; i < (long)nv * F; i++) hf[i] = (float)phi_f[i];
+    if (heads) {
+        param_heads_apply(f, hf, nv, d->vchart, heads, uvf);
+    } else {
+        const nn_linear *fo = &f->rest[f->depth - 2];
+        for (int v = 0; v < nv; v++)
+            for (int j = 0; j < 2; j++) {
+                double acc = fo->b->data[j];
+                for (int i = 0; i < F; i++) acc += phi_f[(size_t)v * F + i] * fo->w->data[(size_t)i * 2 + j];
+                uvf[2 * v + j] = (float)tanh(acc);
+            }
+    }
+    if ((s = hidden_at(g, d, uvf, 2, 0, phi)) != NEUV_OK) goto done;
+    /* Least squares in tanh's pre-image, each row weighted by the smallest
+     * tanh' of its targets (a first-order match of the error after tanh). */
+    if ((s = normal_eq_init(&q, K)) != NEUV_OK) goto done;
+    for (int v = 0; v < nv; v++) {
+        double *c, *r = normal_eq_row(&q, &c), w = 1;
+        for (int j = 0; j < 3; j++) {
+            double x = d->x[3 * v + j];
+            if (1 - x * x < w) w = 1 - x * x;
+        }
+        if (!(w > 1e-6)) w = 1e-6;
+        for (int i = 0; i < H; i++) r[i] = w * phi[(size_t)v * H + i];
+        r[H] = w;
+        for (int j = 0; j < 3; j++) {
+            double x = d->x[3 * v + j];
+            if (x > 0.999999) x = 0.999999;
+            if (x < -0.999999) x = -0.999999;
+            double zt = atanh(x);
+            for (int i = 0; i < K; i++) rhs[(size_t)i * 3 + j] += r[i] * w * zt;
+        }
+    }
+    if (normal_eq_solve(&q, 3, rhs) != 0) goto done; /* keep the weights Adam left */
+    for (int j = 0; j < 3; j++) {
+        for (int i = 0; i < H; i++) out->w->data[(size_t)i * 3 + j] = (float)rhs[(size_t)i * 3 + j];
+        out->b->data[j] = (float)rhs[(size_t)H * 3 + j];
+    }
+done:
+    normal_eq_free(&q);
+    free(uvf); free(hf); free(phi_f); free(phi); free(rhs);
+    return s;
+}
+
+double param_output_solve_gradient_error(const param_mlp *f, const param_solve_data *d, double anchor, int n_probe)
+{
+    if (check_f(f, anchor) != NEUV_OK) return INFINITY;
+    int H = f->width, n = 2 * (H + 1);
+    double *theta = malloc(sizeof(double) * (size_t)n), *grad = malloc(sizeof(double) * (size_t)n);
+    solve_state st;
+    normal_eq q = {0};
+    double worst = INFINITY;
+    if (!theta || !grad) goto out;
+    theta_from_layer(&f->rest[f->depth - 2], H, theta);
+    if (solve_state_init(&st, f, d, anchor, 0, theta) != NEUV_OK) { solve_state_free(&st); goto out; }
+    block all = {st.all_faces, st.all_verts, d->nf, d->nv};
+    if (normal_eq_init(&q, n) != NEUV_OK) { solve_state_free(&st); goto out; }
+    gauss_newton_rows(d, &all, st.phi, H, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &q);
+    normal_eq_flush(&q);
+    /* The linearization is exact at θ: ∇E = 2 (A θ − g), A symmetric (upper triangle stored). */
+    cblas_dsymv(CblasRowMajor, CblasUpper, n, 2.0, q.a, n, theta, 1, 0.0, grad, 1);
+    for (int i = 0; i < n; i++) grad[i] -= 2 * q.g[i];
+    double scale = 0;
+    for (int i = 0; i < n; i++) scale = fmax(scale, fabs(grad[i]));
+    worst = 0;
+    for (int k = 0; k < n_probe && k < n; k++) {
+        int i = (int)(((long)k * 7919) % n);
+        double h = 1e-6, keep = theta[i], e[2];
+        for (int sgn = 0; sgn < 2; sgn++) {
+            theta[i] = keep + (sgn ? -h : h);
+            map_block(st.phi, H, theta, &all, st.tz, st.tuv);
+            e[sgn] = block_energy(d, &all, st.tuv, st.sigma, NULL) + anchor * block_anchor(&all, st.tuv, st.uv0, st.mv);
+        }
+        theta[i] = keep;
+        double fd = (e[0] - e[1]) / (2 * h);
+        worst = fmax(worst, fabs(fd - grad[i]) / (scale > 0 ? scale : 1));
+    }
+    solve_state_free(&st);
+out:
+    normal_eq_free(&q);
+    free(theta); free(grad);
+    return worst;
+}

@@ -1,0 +1,91 @@
+/* Exact solves for the output layers of the parameterization networks (a
+ * neuv extension; docs/method.md and bench/RESULTS.md, "The networks' own
+ * map").
+ *
+ * MLP_f(x, ψ) = tanh(h(x, ψ) W + b) with h the last hidden layer. Adam on all
+ * weights leaves the map's angle distortion far above what the hidden
+ * features can express. For fixed h, the conformal energy of the map over
+ * the charts' triangles is nearly quadratic in the output layer (W, b), so
+ * a few Gauss-Newton steps on (W, b) alone reach its minimum over everything
+ * the features can represent:
+ *
+ *   E(W, b) = Σ_f w_f [(J11 − σ J22)² + (J12 + σ J21)²] + μ Σ_v m_v ‖uv_v − uv⁰_v‖²
+ *
+ * J the Jacobian of the map on face f (in the face's isometric 2D frame),
+ * σ = ±1 the chart's orientation in uv⁰ (the map before the solve), w_f the
+ * face's share of the normalized 3D area. The first term (the LSCM energy)
+ * is zero exactly when the map is conformal; it also falls when a region
+ * shrinks, so, as LSCM pins two points, each chart holds two far-apart
+ * vertices where uv⁰ has them (m_v = 10 × the chart's area share / μ there,
+ * a third of the incident faces' shares elsewhere, μ small). tanh is
+ * linearized at the current weights in each step; a step is halved until
+ * E falls and is kept only if it flips no more faces than uv⁰ did.
+ *
+ * Two uses: one shared output layer for all charts (what a category model
+ * applies to charts it never saw), and one output layer ("head") per chart
+ * of the training mesh, selected by the chart (an auto-decoder: as DeepSDF
+ * keeps a code per training shape, the model keeps a head per training
+ * chart). Heads are what per-shape unwraps and saved surface models apply.
+ *
+ * MLP_f⁻¹'s output layer is then refitted by least squares so that
+ * MLP_f⁻¹(MLP_f(x)) = x again at the chart vertices. */
+#ifndef NEUV_MODELS_PARAM_OUTPUT_SOLVE_H
+#define NEUV_MODELS_PARAM_OUTPUT_SOLVE_H
+
+#include "models/param_mlp.h"
+
+/* The charts' vertices and triangles in normalized units, as training sees them. */
+typedef struct param_solve_data {
+    int nv, nf, n_charts;
+    const float *x;          /* nv by 3 normalized positions (MLP_f⁻¹'s targets) */
+    const float *f_in;       /* nv by f_in_dim: MLP_f's inputs */
+    int f_in_dim;
+    const int *vchart;       /* nv: chart of each vertex */
+    const float *psi;        /* n_charts by psi_dim (pooled) or nv by psi_dim (per vertex) */
+    int psi_dim, psi_per_vertex;
+    const int *tri;          /* nf by 3 vertex indices, counter-clockwise seen from outside */
+    const int *fchart;       /* nf */
+    const float *frame_inv;  /* nf by 4 (param_conformal_targets) */
+    const float *face_w;     /* nf: share of the normalized 3D area */
+} param_solve_data;
+
+typedef struct param_solve_report {
+    double energy_before, energy_after; /* conformal term at the vertices, before and after */
+    int steps;                          /* shared solve: Gauss-Newton steps kept */
+    int heads_improved;                 /* per-chart solve: charts whose head moved from the shared one */
+} param_solve_report;
+
+/* Floats per head: (width + 1) x 2, u's weights and bias then v's. */
+int param_head_size(const param_mlp *f);
+
+/* Gauss-Newton steps on MLP_f's shared output layer (in place), all charts together.
+ * Returns NEUV_OK, NEUV_ERR_INPUT (depth < 2 or out != 2) or NEUV_ERR_NOMEM
+ * (a singular system ends the steps and keeps the last weights). */
+neuv_status param_output_solve_conformal(param_mlp *f, const param_solve_data *d, double anchor, int steps,
+                                         param_solve_report *rep);
+
+/* One head per chart (heads: n_charts x param_head_size(f), written), each
+ * Gauss-Newton from the shared output layer on the chart's own faces.
+ * Returns NEUV_OK, NEUV_ERR_INPUT or NEUV_ERR_NOMEM. */
+neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data *d, double anchor, int steps,
+                                     float *heads, param_solve_report *rep);
+
+/* Least-squares fit of MLP_f⁻¹'s output layer (in place) so that it maps
+ * MLP_f's outputs at the vertices (through `heads` when not NULL) back to x.
+ * Returns NEUV_OK, NEUV_ERR_INPUT, NEUV_ERR_NOMEM or NEUV_ERR_INTERNAL. */
+neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const float *heads,
+                                       const param_solve_data *d);
+
+/* MLP_f's output through per-row heads: uv_i = tanh(hidden_i W_{c_i} + b_{c_i}).
+ * Inputs: hidden #N by f->width, head_of #N head index per row, heads.
+ * Outputs: uv #N by 2 (float). */
+void param_heads_apply(const param_mlp *f, const float *hidden, int n, const int *head_of, const float *heads,
+                       float *uv);
+
+/* For tests: the largest difference, relative to the largest gradient
+ * entry, between the gradient of E that the Gauss-Newton rows give at f's
+ * shared output layer (2 Jᵀ r) and a central finite difference of E, over
+ * n_probe of its coordinates. INFINITY on bad input or allocation failure. */
+double param_output_solve_gradient_error(const param_mlp *f, const param_solve_data *d, double anchor, int n_probe);
+
+#endif
