@@ -28,16 +28,20 @@ out = sys.argv[1]
 t = json.load(open(f"{out}/train.json"))
 print(f"trained on {t['shapes']} shapes ({t['faces']} faces, {t['charts']} charts): PatchNet {t['patchnet_iterations']} steps, "
       f"networks {t['param_iterations']} steps, {t['seconds']['total']:.1f} s")
-print("| member | faces | refine | charts cat/own | qce_mean category | qce_mean per-shape | ratio | network charts | repairs | flipped | overlap | s category / per-shape |")
-print("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+print("| member | faces | refine | charts cat/own | qce_mean category | qce_mean per-shape | ratio | category chart sources | network area | network qce | LSCM qce (same charts) | flipped | overlap | s category / per-shape |")
+print("|---|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|")
 ratios = {"0": [], "default": []}
 for r in ("0", "default"):
     for i in range(20, 25):
         c = json.load(open(f"{out}/cat-{r}-{i}.json")); o = json.load(open(f"{out}/own-{r}-{i}.json"))
         q, qo = c["metrics"]["qce_mean"], o["metrics"]["qce_mean"]
         ratios[r].append(q / qo)
+        pv = c["provenance"]
+        src = ", ".join(f"{v['charts']} {k}" for k, v in pv["sources"].items() if v["charts"] > 0)
+        nq, lq = pv["network_qce_mean"], pv["lscm_qce_mean_same_charts"]
+        f4 = lambda v: "–" if v is None else f"{v:.4f}"
         print(f"| {i} | {c['faces']} | {r} | {c['charts']}/{o['charts']} | {q:.4f} | {qo:.4f} | {q/qo:.3f} | "
-              f"{c['model']['network_charts']}/{c['charts']} | {len(c['repairs'])} | {c['metrics']['flipped']} | "
+              f"{src} | {pv['network_area_fraction']:.3f} | {f4(nq)} | {f4(lq)} | {c['metrics']['flipped']} | "
               f"{c['metrics']['overlap_fraction']:.2g} | {c['seconds']['total']:.1f} / {o['seconds']['total']:.1f} |")
 for r in ratios:
     print(f"refine {r}: category / per-shape qce_mean: worst {max(ratios[r]):.3f}, mean {statistics.mean(ratios[r]):.3f}")
