@@ -133,7 +133,8 @@ void param_net_default_options(param_net_options *o, param_preset preset);
  *   o                options (NULL: fast preset)
  * Outputs:
  *   corner_uv        #F by 3 by 2: the UV of each face corner, each chart in
- *                    its own frame, in mesh length units, counter-clockwise
+ *                    its own frame, in mesh length units, counter-clockwise,
+ *                    scaled so that its UV area is its 3D area
  *   rep              may be NULL
  * Returns NEUV_OK, NEUV_ERR_INPUT (bad charts or options), NEUV_ERR_NOMEM or
  * NEUV_ERR_INTERNAL (a geodesic solve or a training step failed). */
@@ -159,6 +160,9 @@ struct param_net_model {
     /* n_charts by param_head_size(&f): each training chart's own output layer
      * of MLP_f (param_output_solve.h), or NULL (the shared layer for all). */
     float *heads;
+    /* n_charts: the factor that brings each chart's map to its 3D area (uv =
+     * uv_gain x MLP_f / scale); NULL in models saved before it (factor 1). */
+    double *uv_gain;
 };
 
 void param_net_model_free(param_net_model *model);

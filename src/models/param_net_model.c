@@ -12,7 +12,7 @@ void param_net_model_free(param_net_model *model)
     param_mlp_free(&model->g);
     nn_params_free(&model->params);
     free(model->psi); free(model->center); free(model->scale); free(model->rot); free(model->mirror);
-    free(model->psi_shift); free(model->psi_mul); free(model->heads);
+    free(model->psi_shift); free(model->psi_mul); free(model->heads); free(model->uv_gain);
     free(model);
 }
 
@@ -69,11 +69,11 @@ neuv_status param_net_apply(const param_net_model *model, int chart_id, const do
                                           R[3 * q + 2] * (p[2] - c[2])));
     }
     neuv_status s = run_net(model, &model->f, chart_id, in, n, 3, out, 2);
-    double sign = model->mirror[chart_id] ? -1 : 1;
+    double sign = model->mirror[chart_id] ? -1 : 1, gain = model->uv_gain ? model->uv_gain[chart_id] : 1;
     if (s == NEUV_OK)
         for (int i = 0; i < n; i++) {
-            uv[2 * i] = sign * out[2 * i] / sc;
-            uv[2 * i + 1] = out[2 * i + 1] / sc;
+            uv[2 * i] = sign * gain * out[2 * i] / sc;
+            uv[2 * i + 1] = gain * out[2 * i + 1] / sc;
         }
     free(in); free(out);
     return s;
@@ -87,7 +87,8 @@ neuv_status param_net_apply_inverse(const param_net_model *model, int chart_id, 
         return neuv_fail(NEUV_ERR_INPUT, "chart %d is not in the model", chart_id);
     float *in = malloc((size_t)n * 2 * sizeof(float)), *out = malloc((size_t)n * 3 * sizeof(float));
     if (!in || !out) { free(in); free(out); return neuv_fail_nomem("parameterization inference"); }
-    double sc = model->scale[chart_id], sign = model->mirror[chart_id] ? -1 : 1;
+    double sign = model->mirror[chart_id] ? -1 : 1;
+    double sc = model->scale[chart_id] / (model->uv_gain ? model->uv_gain[chart_id] : 1);
     for (int i = 0; i < n; i++) {
         in[2 * i] = (float)(sign * uv[2 * i] * sc);
         in[2 * i + 1] = (float)(uv[2 * i + 1] * sc);

@@ -177,6 +177,7 @@ static char *header_json(const unwrap_model *m)
         json_key(&w, "param_depth"); json_int(&w, p->f.depth);
         json_key(&w, "param_fourier"); json_int(&w, p->f.octaves);
         json_key(&w, "param_heads"); json_int(&w, p->heads && p->n_charts > 0 ? 1 : 0);
+        json_key(&w, "param_uv_gain"); json_int(&w, p->uv_gain && p->n_charts > 0 ? 1 : 0);
         json_key(&w, "param_slope"); json_number(&w, p->f.slope);
     }
     json_key(&w, "patchnet"); json_int(&w, m->patchnet != NULL);
@@ -237,6 +238,7 @@ static int push_surface(tensor_list *l, const unwrap_model *m)
         if (!bad) bad |= list_push(l, "param.psi", p->n_charts, p->psi_dim, p->psi, 0);
         if (!bad && p->heads)
             bad |= list_push(l, "param.heads", p->n_charts, param_head_size(&p->f), p->heads, 0);
+        if (!bad && p->uv_gain) bad |= push_doubles(l, "param.uv_gain", p->n_charts, 1, p->uv_gain);
     }
     return bad;
 }
@@ -399,8 +401,9 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
         return s;
     /* Models saved before the input encoding have none. */
     if (header_value(h, "param_fourier") && (s = header_int(h, "param_fourier", 0, 16, &fourier))) return s;
-    long long heads = 0; /* per-chart output layers (absent in older models) */
+    long long heads = 0, gain = 0; /* per-chart output layers and UV scales (absent in older models) */
     if (header_value(h, "param_heads") && (s = header_int(h, "param_heads", 0, 1, &heads))) return s;
+    if (header_value(h, "param_uv_gain") && (s = header_int(h, "param_uv_gain", 0, 1, &gain))) return s;
     const char *sv = header_value(h, "param_slope");
     char *end;
     double slope = sv ? strtod(sv, &end) : NAN;
@@ -435,6 +438,14 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     if (!s) s = read_doubles(c, "param.frame", n, 13, frame);
     if (!s) s = read_ints(c, "param.mirror", n, 1, 0, 1, p->mirror);
     const nn_checkpoint_tensor *t;
+    if (!s && gain) {
+        p->uv_gain = malloc(sizeof(double) * (size_t)n);
+        if (!p->uv_gain) s = neuv_fail_nomem("the model");
+        else s = read_doubles(c, "param.uv_gain", n, 1, p->uv_gain);
+        for (int i = 0; !s && i < n; i++)
+            if (!(p->uv_gain[i] > 0) || !isfinite(p->uv_gain[i]))
+                s = neuv_fail(NEUV_ERR_INPUT, "model chart %d has a UV scale that is not a positive number", i);
+    }
     if (!s && heads) {
         int hs = param_head_size(&p->f);
         s = want_tensor(c, "param.heads", n, hs, &t);
