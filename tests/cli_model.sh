@@ -53,6 +53,18 @@ check "$TMP/sub-uv.obj" "$TMP/sub.json" "$TMP/sub-cmp.json" 0.001 0.99 1 subdivi
 "$NEUV" compare "$TMP/src.obj" "$TMP/simp-uv.obj" --json > "$TMP/simp-cmp.json" && ok || bad "compare failed"
 check "$TMP/simp-uv.obj" "$TMP/simp.json" "$TMP/simp-cmp.json" 0.005 0.97 1 simplified
 
+# Provenance on the apply path: the model's network charts are the networks' (or repaired, and
+# named so), each with the networks' own qce on this mesh and LSCM's on the same chart.
+"$PY" - "$TMP/sub.json" <<'PYEOF' && ok || bad "provenance of a model applied to another triangulation"
+import json, sys
+r = json.load(open(sys.argv[1])); p = r["provenance"]
+net = [c for c in r["chart_list"] if c["source"] in ("network", "network+refined")]
+assert net and r["param"]["network_charts"] == r["model"]["network_charts"], (r["param"], r["model"])
+assert all(c["network_qce"] is not None and c["lscm_qce"] is not None for c in net), net
+assert p["network_area_fraction"] > 0 and p["lscm_qce_mean_same_charts"] is not None, p
+assert abs(sum(s["area_fraction"] for s in p["sources"].values()) - 1) < 1e-9, p
+PYEOF
+
 # Damaged models: exit 2, one line naming the file.
 expect_2() {
   local label="$1"; shift

@@ -186,9 +186,7 @@ neuv_status unwrap_refine_piece(chart_piece *p, int steps, uv_refine_report *rep
     return uv_refine_chart(p->sub, &ro, p->uv, rep);
 }
 
-/* LSCM's qce_mean on the piece's chart (p->lscm_qce), for the report's
- * comparison of the networks' map with LSCM on the same charts. */
-static neuv_status piece_lscm_qce(chart_piece *p)
+neuv_status unwrap_piece_lscm_qce(chart_piece *p)
 {
     double *uv = malloc(sizeof(double) * 2 * (size_t)p->sub->nv);
     if (!uv) return neuv_fail_nomem("chart UVs");
@@ -236,7 +234,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
             int ok = chart_uv_check_run(p->sub, p->uv, &chk);
             if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
             p->net_qce = chart_qce_mean(p->sub, p->uv, NULL);
-            if (ok && (s = piece_lscm_qce(p)) != NEUV_OK) break;
+            if (ok && (s = unwrap_piece_lscm_qce(p)) != NEUV_OK) break;
             p->source = ok && r->opts.refine > 0 ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
             if (ok && r->opts.refine > 0) {
                 uv_refine_report rr;

@@ -718,6 +718,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         if (net < 0) p->source = CHART_SOURCE_TRANSFERRED;
         else if (repaired[c]) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
         else p->source = refine > 0 || relaxed ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
+        if (s == NEUV_OK && chart_source_is_network(p->source)) s = unwrap_piece_lscm_qce(p);
         if (net >= 0 && !repaired[c]) r->model.network_charts++;
         if (net < 0) r->model.transferred_charts++;
         free(target); free(scratch);

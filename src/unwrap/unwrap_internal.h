@@ -102,6 +102,11 @@ typedef struct chart_piece {
     double lscm_qce;       /* LSCM's qce_mean on it (NaN: not computed) */
 } chart_piece;
 
+/* LSCM's qce_mean on the piece's chart into p->lscm_qce (left NaN when the
+ * solve fails), for the report's comparison of the networks' map with LSCM
+ * on the same charts. Returns NEUV_OK or NEUV_ERR_NOMEM. */
+neuv_status unwrap_piece_lscm_qce(chart_piece *p);
+
 /* The provenance arrays of r (chart_source, chart_net_qce, chart_lscm_qce)
  * from the pieces. Returns NEUV_OK or NEUV_ERR_NOMEM. */
 neuv_status unwrap_keep_provenance(struct neuv_unwrap_result *r, const chart_piece *pieces);
