@@ -215,9 +215,9 @@ static void print_row(const char *name, double sec, int iters, int nc, const cha
         printf("| %s | %.2f | – | – | %d | – | – | %.4f | %.4f | %.4f |\n", name, sec, raw->flipped, raw->qce_mean,
                raw->qce_mean, raw->ase_abs_mean);
     if (rep)
-        fprintf(stderr, "  %s: params/MLP %ld, pairs %ld, plateau %d, loss %.5f (cycle %.2e iso %.2e angle %.2e area %.2e barrier %.2e conf %.2e warm %.2e), solve %d steps E %.3e -> %.3e, heads %d, cycle_rms %.4f, setup %.2fs, train %.2fs\n",
+        fprintf(stderr, "  %s: params/MLP %ld, pairs %ld, plateau %d, loss %.5f (cycle %.2e iso %.2e angle %.2e area %.2e barrier %.2e warm %.2e), solve %d steps E %.3e -> %.3e, heads %d, cycle_rms %.4f, setup %.2fs, train %.2fs\n",
                 name, rep->parameters, rep->pairs, rep->stopped_on_plateau, rep->loss, rep->loss_cycle,
-                rep->loss_iso, rep->loss_angle, rep->loss_area, rep->loss_barrier, rep->loss_conf, rep->loss_warm, rep->solve_steps, rep->solve_energy_before, rep->solve_energy_after, rep->heads_improved, rep->cycle_rms, rep->setup_seconds,
+                rep->loss_iso, rep->loss_angle, rep->loss_area, rep->loss_barrier, rep->loss_warm, rep->solve_steps, rep->solve_energy_before, rep->solve_energy_after, rep->heads_improved, rep->cycle_rms, rep->setup_seconds,
                 rep->train_seconds);
     fflush(stdout);
 }
@@ -275,10 +275,8 @@ static void apply_key(param_net_options *o, const char *kv)
     else if (KEY("fold")) o->lambda_fold = v;
     else if (KEY("lr_final")) o->lr_final = v;
     else if (KEY("fold_eps")) o->fold_eps = v;
-    else if (KEY("conf")) o->lambda_conf = v;
     else if (KEY("warm")) o->warm_iters = (int)v;
     else if (KEY("lambda_warm")) o->lambda_warm = v;
-    else if (KEY("fourier")) o->fourier = (int)v;
     else if (KEY("solve")) o->solve_steps = (int)v;
     else if (KEY("heads")) o->chart_heads = (int)v;
     else if (KEY("anchor")) o->solve_anchor = v;

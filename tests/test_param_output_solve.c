@@ -117,8 +117,8 @@ int main(void)
     rng r;
     rng_seed(&r, 5);
     param_mlp f, inv;
-    CHECK_INT(param_mlp_create(&f, 3, 0, 0, 24, 2, 3, 0.01f, &r, &ps, "f"), NEUV_OK);
-    CHECK_INT(param_mlp_create(&inv, 2, 0, 0, 24, 3, 3, 0.01f, &r, &ps, "g"), NEUV_OK);
+    CHECK_INT(param_mlp_create(&f, 3, 0, 24, 2, 3, 0.01f, &r, &ps, "f"), NEUV_OK);
+    CHECK_INT(param_mlp_create(&inv, 2, 0, 24, 3, 3, 0.01f, &r, &ps, "g"), NEUV_OK);
 
     /* The rows' gradient is the energy's (finite differences, relative error). */
     double ge = param_output_solve_gradient_error(&f, &one.d, 1e-3, 40);

@@ -8,25 +8,19 @@
 #include "core/error.h"
 #include "core/rng.h"
 
-int param_mlp_encoded_width(int in, int octaves)
-{
-    return in * (1 + 2 * (octaves > 0 ? octaves : 0));
-}
-
-neuv_status param_mlp_create(param_mlp *m, int in, int octaves, int psi, int width, int out, int depth,
-                             float slope, struct rng *r, nn_params *params, const char *prefix)
+neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, int depth, float slope,
+                             struct rng *r, nn_params *params, const char *prefix)
 {
     *m = (param_mlp){0};
-    if (in < 1 || psi < 0 || width < 1 || out < 1 || depth < 1 || octaves < 0 || octaves > 16)
-        return neuv_fail(NEUV_ERR_INPUT, "bad MLP shape (in %d, octaves %d, psi %d, width %d, out %d, depth %d)",
-                         in, octaves, psi, width, out, depth);
-    m->in = in; m->psi = psi; m->width = width; m->out = out; m->depth = depth; m->octaves = octaves;
-    int in_enc = param_mlp_encoded_width(in, octaves);
+    if (in < 1 || psi < 0 || width < 1 || out < 1 || depth < 1)
+        return neuv_fail(NEUV_ERR_INPUT, "bad MLP shape (in %d, psi %d, width %d, out %d, depth %d)", in,
+                         psi, width, out, depth);
+    m->in = in; m->psi = psi; m->width = width; m->out = out; m->depth = depth;
     m->slope = slope > 0 ? slope : 0.01f;
     int w0 = depth > 1 ? width : out;
     char name[128];
     snprintf(name, sizeof name, "%s.0.wx", prefix);
-    m->w_x = nn_params_add(params, in_enc, w0, name);
+    m->w_x = nn_params_add(params, in, w0, name);
     if (psi > 0) {
         snprintf(name, sizeof name, "%s.0.wpsi", prefix);
         m->w_psi = nn_params_add(params, psi, w0, name);
@@ -35,18 +29,9 @@ neuv_status param_mlp_create(param_mlp *m, int in, int octaves, int psi, int wid
     m->b0 = nn_params_add(params, 1, w0, name);
     if (!m->w_x || !m->b0 || (psi > 0 && !m->w_psi)) return NEUV_ERR_NOMEM;
     /* One bound for both blocks: they are one layer of fan-in in + psi. */
-    int fan_in = in_enc + psi;
+    int fan_in = in + psi;
     double bound = depth > 1 ? sqrt(6.0 / fan_in) : sqrt(6.0 / (fan_in + out));
-    /* Inputs past the first three (normals, the sin/cos encoding) start with
-     * zero weight: the initial map is that of the positions alone, a smooth
-     * near-projection, and the network takes the extra inputs up as training
-     * finds them useful (random weights on them fold the initial map, and the
-     * fold barrier then drives training away: measured on spot). */
-    int primary = in < 3 ? in : 3;
-    for (long i = 0; i < (long)in_enc * w0; i++) {
-        float v = (float)((2 * rng_uniform(r) - 1) * bound);
-        m->w_x->data[i] = i / w0 < primary ? v : 0.0f;
-    }
+    for (long i = 0; i < (long)in * w0; i++) m->w_x->data[i] = (float)((2 * rng_uniform(r) - 1) * bound);
     for (long i = 0; psi > 0 && i < (long)psi * w0; i++)
         m->w_psi->data[i] = (float)((2 * rng_uniform(r) - 1) * bound);
     if (depth > 1) {
@@ -69,34 +54,11 @@ void param_mlp_free(param_mlp *m)
     m->rest = NULL;
 }
 
-/* [x, sin(2^k π x), cos(2^k π x)] row by row (see param_mlp.h). */
-static nn_tensor *encode_input(nn_ctx *ctx, const param_mlp *m, nn_tensor *x)
-{
-    if (!x || m->octaves == 0) return x;
-    int in = x->cols, w = param_mlp_encoded_width(in, m->octaves);
-    nn_tensor *e = nn_new(ctx, x->rows, w);
-    if (!e) return NULL;
-    for (long i = 0; i < x->rows; i++) {
-        const float *xi = x->data + i * in;
-        float *ei = e->data + i * w;
-        for (int q = 0; q < in; q++) ei[q] = xi[q];
-        for (int k = 0; k < m->octaves; k++) {
-            double om = 3.14159265358979323846 * (double)(1 << k);
-            for (int q = 0; q < in; q++) {
-                ei[in + (2 * k) * in + q] = (float)sin(om * xi[q]);
-                ei[in + (2 * k + 1) * in + q] = (float)cos(om * xi[q]);
-            }
-        }
-    }
-    return e;
-}
-
 /* The first `layers` linear layers with their activations (all: the
  * pre-tanh output). */
 static nn_tensor *forward_layers(nn_ctx *ctx, const param_mlp *m, nn_tensor *x, nn_tensor *psi, const int *psi_row,
                                  int layers)
 {
-    x = encode_input(ctx, m, x);
     nn_tensor *h = nn_add(ctx, nn_matmul(ctx, x, m->w_x), m->b0);
     if (m->psi > 0) {
         nn_tensor *p = nn_matmul(ctx, psi, m->w_psi);

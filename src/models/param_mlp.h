@@ -7,14 +7,7 @@
  * ψ W_ψ is computed once per chart and gathered per point, so the ψ half of
  * the first layer costs #charts rows instead of #points rows; the result is
  * the same as feeding [x ψ] to one linear layer.
- *
- * Input encoding (optional, `octaves` > 0): x is replaced by
- * [x, sin(2^k π x_q), cos(2^k π x_q)] for k < octaves and every coordinate q
- * before the first layer, so that a small network can bend its map at the
- * scale of a chart's features (inputs are normalized to |x| <= ~0.6). The
- * encoding treats x as a constant: no gradient flows back into x, so it is
- * only for a network whose input is data (MLP_f), not another network's
- * output (MLP_f⁻¹). */
+ */
 #ifndef NEUV_MODELS_PARAM_MLP_H
 #define NEUV_MODELS_PARAM_MLP_H
 
@@ -25,26 +18,21 @@ struct rng;
 
 typedef struct param_mlp {
     int in, psi, width, out, depth;
-    int octaves;                 /* input encoding octaves (0: x as it is) */
     float slope;                 /* LeakyReLU slope */
     nn_tensor *w_x, *w_psi, *b0; /* first layer: in by W, psi by W, 1 by W (W = width, or out if depth 1) */
     nn_linear *rest;             /* depth - 1 layers */
 } param_mlp;
 
-/* Number of first-layer inputs for `in` raw inputs and `octaves` octaves. */
-int param_mlp_encoded_width(int in, int octaves);
-
 /* Registers the layers as "<prefix>.0.wx", "<prefix>.0.wpsi", "<prefix>.0.b",
  * "<prefix>.<l>.w/b" in `params`, initialized from r (Kaiming-uniform for the
  * LeakyReLU layers over the first layer's whole fan-in in + psi, Xavier for the
- * tanh output layer). psi may be 0 (unconditioned); octaves 0 means no input
- * encoding (w_x is then in by W, else param_mlp_encoded_width(in, octaves) by W).
+ * tanh output layer). psi may be 0 (unconditioned).
  * Returns NEUV_OK, NEUV_ERR_INPUT (bad sizes) or NEUV_ERR_NOMEM. */
-neuv_status param_mlp_create(param_mlp *m, int in, int octaves, int psi, int width, int out, int depth,
-                             float slope, struct rng *r, nn_params *params, const char *prefix);
+neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, int depth, float slope,
+                             struct rng *r, nn_params *params, const char *prefix);
 void param_mlp_free(param_mlp *m);
 
-/* Inputs:  x        #N by in (a constant when m->octaves > 0)
+/* Inputs:  x        #N by in
  *          psi      #C by psi (NULL when m->psi == 0)
  *          psi_row  #N row of psi for each point, or NULL when psi has #N rows
  * Output:  #N by out, in (-1, 1). */

@@ -80,7 +80,7 @@ typedef struct train_data {
     double *fcum;      /* nf: cumulative normalized area (face sampling) */
     param_corners corners;
     float *cos3d, *area3d;
-    float *frame_inv, *conf_w; /* nf by 4, nf: L_conf targets (when lambda_conf > 0) */
+    float *frame_inv, *conf_w; /* nf by 4, nf: conformal-energy targets (when solve_steps > 0) */
     float *target;     /* nv by 2: the charts' LSCM maps in their frames (when warm_iters > 0) */
     geodesic_pairs pairs;   /* chart-vertex indices, normalized distances */
     float *feat;       /* nv by psi_dim per-vertex ψ (per-vertex mode) */
@@ -469,7 +469,7 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
         d->target = malloc((size_t)nv * 2 * sizeof(float));
         if (!d->target) return neuv_fail_nomem("warm-start targets");
     }
-    if (!skip_pairs && (o->lambda_conf > 0 || o->solve_steps > 0)) {
+    if (!skip_pairs && o->solve_steps > 0) {
         d->frame_inv = malloc((size_t)m->nf * 4 * sizeof(float));
         d->conf_w = malloc((size_t)m->nf * sizeof(float));
         if (!d->frame_inv || !d->conf_w) return neuv_fail_nomem("conformal targets");
@@ -686,7 +686,7 @@ static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const
 static neuv_status copy_weights(const param_net_model *from, param_net_model *to, int psi_dim)
 {
     if (from->psi_dim != psi_dim || from->params.n != to->params.n || from->psi_mode != to->psi_mode ||
-        from->f.width != to->f.width || from->f.depth != to->f.depth || from->f.octaves != to->f.octaves)
+        from->f.width != to->f.width || from->f.depth != to->f.depth)
         return neuv_fail(NEUV_ERR_INPUT, "fine-tuning: the model's networks (width %d, depth %d, psi %d) differ from "
                                          "these options (width %d, depth %d, psi %d)",
                          from->f.width, from->f.depth, from->psi_dim, to->f.width, to->f.depth, psi_dim);
@@ -730,11 +730,9 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
 
     rng r;
     rng_seed(&r, o->seed * 0x9E3779B97F4A7C15ull + 17);
-    s = param_mlp_create(&model->f, 3, o->fourier, d.psi_dim, o->width, 2, o->depth, o->leaky_slope, &r,
-                         &model->params, "f");
+    s = param_mlp_create(&model->f, 3, d.psi_dim, o->width, 2, o->depth, o->leaky_slope, &r, &model->params, "f");
     if (s == NEUV_OK)
-        s = param_mlp_create(&model->g, 2, 0, d.psi_dim, o->width, 3, o->depth, o->leaky_slope, &r, &model->params,
-                             "g");
+        s = param_mlp_create(&model->g, 2, d.psi_dim, o->width, 3, o->depth, o->leaky_slope, &r, &model->params, "g");
     model->psi_mode = o->psi_mode;
     if (s == NEUV_OK && o->init) s = copy_weights(o->init, model, d.psi_dim);
     if (s != NEUV_OK) goto done;
@@ -797,12 +795,6 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
                                             nn_view(ctx, d.nf, 1, b.orient), (float)o->fold_eps);
             loss = nn_add(ctx, loss, nn_scale(ctx, lfold, (float)o->lambda_fold));
         }
-        nn_tensor *lconf = NULL;
-        if (d.frame_inv && o->lambda_conf > 0) {
-            lconf = param_loss_conformal(ctx, uv, &d.corners, nn_view(ctx, d.nf, 4, d.frame_inv),
-                                         nn_view(ctx, d.nf, 1, d.conf_w), nn_view(ctx, d.nf, 1, b.orient));
-            loss = nn_add(ctx, loss, nn_scale(ctx, lconf, (float)o->lambda_conf));
-        }
         nn_tensor *lwarm = NULL;
         if (d.target && it < o->warm_iters && !o->init) { /* fine-tuning starts from the model instead */
             lwarm = param_loss_cycle(ctx, nn_view(ctx, d.nv, 2, d.target), nn_gather_rows(ctx, uv, b.vertex_rows, d.nv));
@@ -817,7 +809,6 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         rep->loss_cycle = lc->data[0]; rep->loss_iso = li->data[0];
         rep->loss_angle = lang->data[0]; rep->loss_area = lar->data[0];
         rep->loss_barrier = lfold ? lfold->data[0] : 0;
-        rep->loss_conf = lconf ? lconf->data[0] : 0;
         rep->loss_warm = lwarm ? lwarm->data[0] : 0;
         if (it % 10 == 0 || it == o->iters - 1)
             neuv_progress("param", (double)(it + 1) / o->iters, "iter %d loss %.5f", it + 1, rep->loss);

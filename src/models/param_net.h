@@ -54,25 +54,19 @@ typedef struct param_net_options {
     double lambda_fold, fold_eps;
     /* neuv extensions for a map that stands on its own (bench/RESULTS.md,
      * "The networks' own map"):
-     *   lambda_conf  weight of the conformal energy L_conf (param_losses.h)
-     *                of MLP_f's map over every chart's own triangles (0: off)
      *   warm_iters   the first steps also pull MLP_f's map at the chart
      *                vertices towards the chart's LSCM map, laid in the
      *                chart's frame (similarity-aligned to the projection on
      *                the tangent plane, area of the chart), with weight
      *                lambda_warm (0 iterations: off); the target is only a
      *                start: the self-supervised losses train on alone after
-     *   fourier      octaves of the sin/cos encoding of MLP_f's input
-     *                (param_mlp.h; 0: none)
      *   solve_steps  after Adam, Gauss-Newton steps on MLP_f's output layer
      *                for the conformal energy of its map over the charts'
      *                triangles, anchored with weight solve_anchor, then a
      *                least-squares refit of MLP_f⁻¹'s output layer
      *                (param_output_solve.h; 0: off) */
-    double lambda_conf;
     int warm_iters;
     double lambda_warm;
-    int fourier;
     int solve_steps;
     double solve_anchor;
     /* With solve_steps: also one output layer per chart (param_output_solve.h),
@@ -106,7 +100,6 @@ typedef struct param_net_report {
     long parameters;        /* per MLP (both have nearly the same count; this is MLP_f) */
     double loss, loss_cycle, loss_iso, loss_angle, loss_area; /* last step, unweighted terms */
     double loss_barrier;    /* last step, unweighted fold barrier (0 when inactive) */
-    double loss_conf;       /* last step, unweighted L_conf (0 when inactive) */
     double loss_warm;       /* last warm-start step, unweighted distance to the LSCM target (0: none) */
     double solve_energy_before, solve_energy_after; /* conformal energy around the output-layer solve */
     int solve_steps;        /* Gauss-Newton steps taken (shared output layer) */

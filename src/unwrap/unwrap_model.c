@@ -175,7 +175,6 @@ static char *header_json(const unwrap_model *m)
         json_key(&w, "param_psi_dim"); json_int(&w, p->psi_dim);
         json_key(&w, "param_width"); json_int(&w, p->f.width);
         json_key(&w, "param_depth"); json_int(&w, p->f.depth);
-        json_key(&w, "param_fourier"); json_int(&w, p->f.octaves);
         json_key(&w, "param_heads"); json_int(&w, p->heads && p->n_charts > 0 ? 1 : 0);
         json_key(&w, "param_uv_gain"); json_int(&w, p->uv_gain && p->n_charts > 0 ? 1 : 0);
         json_key(&w, "param_slope"); json_number(&w, p->f.slope);
@@ -392,15 +391,13 @@ static neuv_status load_psi_norm(const nn_checkpoint *c, const char *h, int requ
 
 static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_model *m)
 {
-    long long nch, psi, width, depth, fourier = 0;
+    long long nch, psi, width, depth;
     neuv_status s;
     if ((s = header_int(h, "param_charts", m->category ? 0 : 1, m->n_charts, &nch)) ||
         (s = header_int(h, "param_psi_dim", 1, 1 << 16, &psi)) ||
         (s = header_int(h, "param_width", 1, 1 << 14, &width)) ||
         (s = header_int(h, "param_depth", 1, 64, &depth)))
         return s;
-    /* Models saved before the input encoding have none. */
-    if (header_value(h, "param_fourier") && (s = header_int(h, "param_fourier", 0, 16, &fourier))) return s;
     long long heads = 0, gain = 0; /* per-chart output layers and UV scales (absent in older models) */
     if (header_value(h, "param_heads") && (s = header_int(h, "param_heads", 0, 1, &heads))) return s;
     if (header_value(h, "param_uv_gain") && (s = header_int(h, "param_uv_gain", 0, 1, &gain))) return s;
@@ -429,9 +426,8 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     }
     rng r;
     rng_seed(&r, 1); /* the initial values are overwritten by the file's */
-    s = param_mlp_create(&p->f, 3, (int)fourier, (int)psi, (int)width, 2, (int)depth, (float)slope, &r, &p->params,
-                         "f");
-    if (!s) s = param_mlp_create(&p->g, 2, 0, (int)psi, (int)width, 3, (int)depth, (float)slope, &r, &p->params, "g");
+    s = param_mlp_create(&p->f, 3, (int)psi, (int)width, 2, (int)depth, (float)slope, &r, &p->params, "f");
+    if (!s) s = param_mlp_create(&p->g, 2, (int)psi, (int)width, 3, (int)depth, (float)slope, &r, &p->params, "g");
     if (!s) s = check_params(c, &p->params);
     if (!s) s = load_psi_norm(c, h, m->category, p);
     if (n == 0) { free(frame); return s; }
