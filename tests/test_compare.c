@@ -99,6 +99,33 @@ int main(void)
     CHECK_NEAR(r.chart_agreement, 0.75, 0.02);
     mesh_free(b);
 
+    /* A triangulation whose edges miss A's seam (11 cells: the seam at
+     * x = 0.5 crosses a column of faces, each taken by the side of its
+     * centroid) with the same map: corners past the seam are compared with
+     * their chart's map extended (exact on a flat grid), while the plain
+     * nearest-point measure sees them half an atlas away (the island shift). */
+    neuv_mesh *fa = two_chart_grid(16, 0.5, 0.5), *fb = two_chart_grid(11, 0.5, 0.5);
+    for (int v = 0; v < fa->nv; v++) fa->pos[3 * v + 2] = 0;
+    for (int v = 0; v < fb->nv; v++) fb->pos[3 * v + 2] = 0;
+    CHECK_INT(uv_compare(fa, fb, &r), NEUV_OK);
+    CHECK(r.uv_max < 1e-12);
+    /* The seam column's cells are cut into a left and a right triangle:
+     * the corners at x = 6/11 of left faces and at x = 5/11 of right faces
+     * (up to 12 each of about 170) lie past their chart's seam. */
+    CHECK(r.across_seam > 0.1 && r.across_seam < 0.15);
+    CHECK_NEAR(r.nearest_max, 0.5, 1e-12);
+    CHECK(r.nearest_mean > 10 * r.uv_mean + 0.01);
+    CHECK_NEAR(r.chart_agreement, 1, 0.05);
+    /* Bumpy: the extension is the closest face's plane map, exact to the
+     * surface's curvature over a cell (a few thousandths here). */
+    mesh_free(fb);
+    fb = two_chart_grid(11, 0.5, 0.5);
+    CHECK_INT(uv_compare(a, fb, &r), NEUV_OK);
+    CHECK(r.uv_max < 0.01);
+    CHECK(r.uv_mean < 1e-3);
+    CHECK(r.across_seam > 0.02);
+    mesh_free(fa); mesh_free(fb);
+
     /* Bad inputs. */
     neuv_mesh *plain = shape_grid(2, 2, 1, 1, 0);
     CHECK_INT(uv_compare(a, plain, &r), NEUV_ERR_INPUT);

@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "compare/uv_compare.h"
 #include "core/json_writer.h"
+#include "metrics/uv_metrics.h"
 
 int cmd_compare(int argc, char **argv)
 {
@@ -31,7 +32,9 @@ int cmd_compare(int argc, char **argv)
         if (m[k]->nuv == 0) { mesh_free(m[0]); mesh_free(m[1]); return cli_error(path[k], "the mesh has no UVs to compare"); }
     }
     uv_compare_result r;
+    uv_metrics mb;
     neuv_status st = uv_compare(m[0], m[1], &r);
+    if (st == NEUV_OK) st = uv_metrics_compute(m[1], &mb);
     mesh_free(m[0]); mesh_free(m[1]);
     if (st) return cli_fail(path[1], st);
     if (json) {
@@ -46,6 +49,13 @@ int cmd_compare(int argc, char **argv)
         json_key(&w, "p95"); json_number(&w, r.uv_p95);
         json_key(&w, "max"); json_number(&w, r.uv_max);
         json_end_object(&w);
+        json_key(&w, "uv_distance_nearest");
+        json_begin_object(&w);
+        json_key(&w, "mean"); json_number(&w, r.nearest_mean);
+        json_key(&w, "p95"); json_number(&w, r.nearest_p95);
+        json_key(&w, "max"); json_number(&w, r.nearest_max);
+        json_end_object(&w);
+        json_key(&w, "across_seam"); json_number(&w, r.across_seam);
         json_key(&w, "chart_agreement"); json_number(&w, r.chart_agreement);
         json_key(&w, "chart_agreement_faces"); json_number(&w, r.chart_agreement_faces);
         json_key(&w, "charts_a"); json_int(&w, r.charts_a);
@@ -54,6 +64,9 @@ int cmd_compare(int argc, char **argv)
         json_key(&w, "faces_b"); json_int(&w, r.faces_b);
         json_key(&w, "vertices_compared"); json_int(&w, r.vertices_compared);
         json_key(&w, "max_surface_distance"); json_number(&w, r.max_surface_distance);
+        json_key(&w, "b_flipped"); json_int(&w, mb.flipped);
+        json_key(&w, "b_overlap_fraction"); json_number(&w, mb.overlap_fraction);
+        json_key(&w, "b_qce_mean"); json_number(&w, mb.qce_mean);
         json_end_object(&w);
         if (w.failed) { json_free(&w); return cli_error(NULL, "out of memory writing JSON"); }
         printf("%s\n", json_text(&w));
@@ -61,11 +74,15 @@ int cmd_compare(int argc, char **argv)
         return 0;
     }
     printf("%s vs %s\n", path[0], path[1]);
-    printf("  UV distance (atlas units) over %d corners of B: mean %.6g  p95 %.6g  max %.6g\n",
-           r.vertices_compared, r.uv_mean, r.uv_p95, r.uv_max);
+    printf("  UV distance (atlas units) over %d corners of B, in the matched chart: mean %.6g  p95 %.6g  max %.6g"
+           " (%.2f%% of corners past its seam, compared with its map extended)\n",
+           r.vertices_compared, r.uv_mean, r.uv_p95, r.uv_max, 100 * r.across_seam);
+    printf("  UV distance at the closest point whatever its chart: mean %.6g  p95 %.6g  max %.6g\n", r.nearest_mean,
+           r.nearest_p95, r.nearest_max);
     printf("  chart agreement: %.2f%% of B's area (%.2f%% of its faces)\n", 100 * r.chart_agreement,
            100 * r.chart_agreement_faces);
     printf("  faces: A %d, B %d; charts: A %d, B %d; B's farthest vertex from A's surface %.3g\n", r.faces_a, r.faces_b,
            r.charts_a, r.charts_b, r.max_surface_distance);
+    printf("  B: %d flipped faces, overlap %.3g, qce_mean %.4f\n", mb.flipped, mb.overlap_fraction, mb.qce_mean);
     return 0;
 }

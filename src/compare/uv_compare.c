@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "atlas/uv_charts.h"
+#include "charts/charts.h"
 #include "core/error.h"
 #include "mesh/edge_map.h"
 #include "spatial/bvh.h"
@@ -34,9 +35,9 @@ static double uv_dist_in_face(const neuv_mesh *a, int f, const double w[3], cons
 /* Smallest UV distance among the A faces holding the closest point found
  * in face f with weights w (see the header on seams). */
 static double uv_distance_at(const neuv_mesh *a, const int *vf_start, const int *vf, int f, const double w[3],
-                             const double p[3], double d2, const double uv[2])
+                             const double p[3], double d2, const double uv[2], const int *chart_a, int only)
 {
-    double best = uv_dist_in_face(a, f, w, uv);
+    double best = only < 0 || chart_a[f] == only ? uv_dist_in_face(a, f, w, uv) : INFINITY;
     int on = 0, keep[3], nk = 0;
     for (int k = 0; k < 3; k++) {
         if (w[k] < ON_EDGE) on = 1;
@@ -46,7 +47,7 @@ static double uv_distance_at(const neuv_mesh *a, const int *vf_start, const int 
     /* Candidates: faces around the first kept vertex that hold all kept vertices. */
     for (int j = vf_start[keep[0]]; j < vf_start[keep[0] + 1]; j++) {
         int g = vf[j];
-        if (g == f) continue;
+        if (g == f || (only >= 0 && chart_a[g] != only)) continue;
         int all = 1;
         for (int i = 1; i < nk; i++) {
             int has = 0;
@@ -64,6 +65,63 @@ static double uv_distance_at(const neuv_mesh *a, const int *vf_start, const int 
     return best;
 }
 
+/* UV distance of the corners whose matched A chart does not hold their
+ * closest point (they lie past that chart's seam): per chart, the closest
+ * point of the chart itself, its face's UV map extended linearly there
+ * (plane barycentric weights), the distance to B's UV. */
+static neuv_status across_seam_distances(const neuv_mesh *a, const int *chart_a, int n_charts_a, int n,
+                                         const int *chart_of, const double *pts, const double *uvb,
+                                         const int *wu, double *dist)
+{
+    neuv_status st = NEUV_OK;
+    int *idx = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    double *q = malloc(sizeof(double) * 3 * (size_t)(n > 0 ? n : 1));
+    int *face = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    if (!idx || !q || !face) { free(idx); free(q); free(face); return neuv_fail_nomem("UV comparison"); }
+    for (int c = 0; c < n_charts_a && st == NEUV_OK; c++) {
+        int k = 0;
+        for (int w = 0; w < n; w++)
+            if (chart_of[w] == c && isinf(dist[w])) {
+                idx[k] = w;
+                memcpy(q + 3 * (size_t)k, pts + 3 * (size_t)w, sizeof(double) * 3);
+                k++;
+            }
+        if (k == 0) continue;
+        neuv_mesh *sub = NULL;
+        int *vmap = NULL, *fmap = NULL;
+        bvh tree;
+        memset(&tree, 0, sizeof tree);
+        if ((st = chart_submesh(a, chart_a, c, &sub, &vmap, &fmap)) == NEUV_OK && (st = bvh_build(&tree, sub)) == NEUV_OK) {
+            bvh_closest_points(&tree, k, q, face, NULL, NULL);
+            for (int i = 0; i < k; i++) {
+                const int *t = sub->tri + 3 * (size_t)face[i];
+                double wt[3];
+                triangle_barycentric(sub->pos + 3 * (size_t)t[0], sub->pos + 3 * (size_t)t[1], sub->pos + 3 * (size_t)t[2],
+                                     q + 3 * (size_t)i, wt);
+                dist[idx[i]] = uv_dist_in_face(a, fmap[face[i]], wt, uvb + 2 * (size_t)wu[idx[i]]);
+            }
+        }
+        bvh_free(&tree);
+        mesh_free(sub); free(vmap); free(fmap);
+    }
+    free(idx); free(q); free(face);
+    return st;
+}
+
+static void summarize(double *dist, int n, double *mean, double *p95, double *max)
+{
+    /* Summed in one order, so the mean does not depend on the threads. */
+    double sum = 0;
+    for (int w = 0; w < n; w++) sum += dist[w];
+    qsort(dist, (size_t)n, sizeof(double), cmp_double);
+    *mean = sum / n;
+    *max = dist[n - 1];
+    /* p95 by linear interpolation between order statistics. */
+    double rank = 0.95 * (n - 1);
+    int lo = (int)floor(rank);
+    *p95 = lo + 1 < n ? dist[lo] + (rank - lo) * (dist[lo + 1] - dist[lo]) : dist[lo];
+}
+
 neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result *res)
 {
     memset(res, 0, sizeof *res);
@@ -77,15 +135,16 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     edge_map wedges, pairs;
     int wedges_ok = edge_map_init(&wedges, ncb) == 0;
     int pairs_ok = edge_map_init(&pairs, (size_t)b->nf / 4 + 16) == 0;
-    int *wv = malloc(sizeof(int) * ncb), *wu = malloc(sizeof(int) * ncb);
+    int *wv = malloc(sizeof(int) * ncb), *wu = malloc(sizeof(int) * ncb), *wchart = malloc(sizeof(int) * ncb);
     int *vf_start = calloc((size_t)a->nv + 1, sizeof(int)), *vf = malloc(sizeof(int) * 3 * (size_t)a->nf);
     int *chart_a = malloc(sizeof(int) * (size_t)a->nf), *chart_b = malloc(sizeof(int) * (size_t)b->nf);
     double *pts = malloc(sizeof(double) * 3 * (ncb > (size_t)b->nf ? ncb : (size_t)b->nf));
-    double *bary = malloc(sizeof(double) * 3 * ncb), *d2 = malloc(sizeof(double) * ncb), *dist = NULL;
+    double *bary = malloc(sizeof(double) * 3 * ncb), *d2 = malloc(sizeof(double) * ncb), *dist = NULL, *dist_any = NULL;
     int *face = malloc(sizeof(int) * ncb);
     double *pair_area = NULL, *best_area = NULL;
     int *best_a = NULL;
-    if (!wedges_ok || !pairs_ok || !wv || !wu || !vf_start || !vf || !chart_a || !chart_b || !pts || !bary || !d2 || !face)
+    if (!wedges_ok || !pairs_ok || !wv || !wu || !wchart || !vf_start || !vf || !chart_a || !chart_b || !pts || !bary ||
+        !d2 || !face)
         goto nomem;
     if ((st = bvh_build(&tree, a))) goto done;
     for (size_t c = 0; c < (size_t)a->nf * 3; c++) vf_start[a->tri[c] + 1]++;
@@ -93,34 +152,6 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     for (size_t c = 0; c < (size_t)a->nf * 3; c++) vf[vf_start[a->tri[c]]++] = (int)(c / 3);
     for (int v = a->nv; v > 0; v--) vf_start[v] = vf_start[v - 1];
     vf_start[0] = 0;
-
-    /* UV distance at every distinct (vertex, UV) corner of B. */
-    int nw = 0;
-    for (size_t c = 0; c < ncb; c++) {
-        int inserted;
-        if (!edge_map_slot(&wedges, b->tri[c], b->tri_uv[c], nw, &inserted)) goto nomem;
-        if (inserted) { wv[nw] = b->tri[c]; wu[nw] = b->tri_uv[c]; nw++; }
-    }
-    for (int w = 0; w < nw; w++) memcpy(pts + 3 * (size_t)w, b->pos + 3 * (size_t)wv[w], sizeof(double) * 3);
-    bvh_closest_points(&tree, nw, pts, face, bary, d2);
-    dist = malloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
-    if (!dist) goto nomem;
-#pragma omp parallel for schedule(dynamic, 256)
-    for (int w = 0; w < nw; w++)
-        dist[w] = uv_distance_at(a, vf_start, vf, face[w], bary + 3 * (size_t)w, pts + 3 * (size_t)w, d2[w],
-                                 b->uv + 2 * (size_t)wu[w]);
-    /* Summed in one order, so the mean does not depend on the threads. */
-    double sum = 0;
-    for (int w = 0; w < nw; w++) sum += dist[w];
-    for (int w = 0; w < nw; w++) res->max_surface_distance = fmax(res->max_surface_distance, sqrt(d2[w]));
-    qsort(dist, (size_t)nw, sizeof(double), cmp_double);
-    res->vertices_compared = nw;
-    res->uv_mean = sum / nw;
-    res->uv_max = dist[nw - 1];
-    /* p95 by linear interpolation between order statistics. */
-    double rank = 0.95 * (nw - 1);
-    int lo = (int)floor(rank);
-    res->uv_p95 = lo + 1 < nw ? dist[lo] + (rank - lo) * (dist[lo + 1] - dist[lo]) : dist[lo];
 
     /* Chart agreement. */
     int nca = uv_charts(a, chart_a), ncbch = uv_charts(b, chart_b);
@@ -163,14 +194,42 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     res->chart_agreement_faces = (double)agree_faces / b->nf;
     res->faces_a = a->nf;
     res->faces_b = b->nf;
+
+    /* UV distance at every distinct (vertex, UV) corner of B, in the A chart
+     * matched to the corner's B chart. */
+    int nw = 0;
+    for (size_t c = 0; c < ncb; c++) {
+        int inserted;
+        if (!edge_map_slot(&wedges, b->tri[c], b->tri_uv[c], nw, &inserted)) goto nomem;
+        if (inserted) { wv[nw] = b->tri[c]; wu[nw] = b->tri_uv[c]; wchart[nw] = best_a[chart_b[c / 3]]; nw++; }
+    }
+    for (int w = 0; w < nw; w++) memcpy(pts + 3 * (size_t)w, b->pos + 3 * (size_t)wv[w], sizeof(double) * 3);
+    bvh_closest_points(&tree, nw, pts, face, bary, d2);
+    dist = malloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
+    dist_any = malloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
+    if (!dist || !dist_any) goto nomem;
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int w = 0; w < nw; w++) {
+        const double *wt = bary + 3 * (size_t)w, *p = pts + 3 * (size_t)w, *uv = b->uv + 2 * (size_t)wu[w];
+        dist_any[w] = uv_distance_at(a, vf_start, vf, face[w], wt, p, d2[w], uv, chart_a, -1);
+        dist[w] = uv_distance_at(a, vf_start, vf, face[w], wt, p, d2[w], uv, chart_a, wchart[w]);
+    }
+    int across = 0;
+    for (int w = 0; w < nw; w++) across += isinf(dist[w]) != 0;
+    if (across && (st = across_seam_distances(a, chart_a, nca, nw, wchart, pts, b->uv, wu, dist))) goto done;
+    for (int w = 0; w < nw; w++) res->max_surface_distance = fmax(res->max_surface_distance, sqrt(d2[w]));
+    res->vertices_compared = nw;
+    res->across_seam = (double)across / nw;
+    summarize(dist, nw, &res->uv_mean, &res->uv_p95, &res->uv_max);
+    summarize(dist_any, nw, &res->nearest_mean, &res->nearest_p95, &res->nearest_max);
     goto done;
 nomem:
     st = neuv_fail(NEUV_ERR_NOMEM, "out of memory comparing UV maps");
 done:
     if (wedges_ok) edge_map_free(&wedges);
     if (pairs_ok) edge_map_free(&pairs);
-    free(wv); free(wu); free(vf_start); free(vf); free(chart_a); free(chart_b); free(pts);
-    free(bary); free(d2); free(dist); free(face); free(pair_area); free(best_area); free(best_a);
+    free(wv); free(wu); free(wchart); free(vf_start); free(vf); free(chart_a); free(chart_b); free(pts);
+    free(bary); free(d2); free(dist); free(dist_any); free(face); free(pair_area); free(best_area); free(best_a);
     bvh_free(&tree);
     return st;
 }

@@ -7,7 +7,9 @@
 #include "mesh/mesh.h"
 
 typedef struct uv_compare_result {
-    double uv_mean, uv_p95, uv_max; /* UV distance in atlas units (UV coordinates) */
+    double uv_mean, uv_p95, uv_max; /* UV distance in atlas units (UV coordinates), in the matched chart */
+    double nearest_mean, nearest_p95, nearest_max; /* the same at the closest point whatever its chart */
+    double across_seam;             /* share of B's corners lying past their matched A chart's seam */
     double chart_agreement;         /* headline: share of B's surface AREA whose chart agrees */
     double chart_agreement_faces;   /* the same share counted in faces */
     int faces_a, faces_b;
@@ -17,18 +19,27 @@ typedef struct uv_compare_result {
 } uv_compare_result;
 
 /* Compares B's UV map against A's.
- * UV distance: for every distinct (vertex, UV) corner of B, the closest
- * point of A's surface (BVH), A's per-corner UVs interpolated there with
- * the barycentric weights of the face found, and the Euclidean distance to
- * B's UV. Where the closest point lies on an edge or vertex of A, every A
- * face touching it is a candidate and the nearest UV value counts: on A's
- * seams the UV is multi-valued and B's corner belongs to one side.
  * Chart agreement: charts are uv_charts of each mesh. Each B face's
  * centroid is located on A (closest point) to get the A chart under it;
  * each B chart is matched to the A chart holding most of its area; a B
  * face agrees when the A chart under its centroid is its chart's match.
  * The headline share is by area (a few tiny faces along chart borders do
  * not dominate it); the share by face count is reported too.
+ * UV distance (uv_*): for every distinct (vertex, UV) corner of B, A's UV
+ * map OF THE A CHART MATCHED TO THE CORNER'S B CHART at the closest point of
+ * the surface, and the Euclidean distance to B's UV. Where the closest
+ * point lies on an edge or vertex of A, every A face of that chart touching
+ * it is a candidate and the nearest UV value counts (on A's seams the UV is
+ * multi-valued and B's corner belongs to one side). A corner past its
+ * chart's seam (a triangulation that shares no edge with A cannot follow
+ * the seam exactly: a face across it belongs to one side) is compared
+ * with the chart's map extended linearly past its border: the closest
+ * point of that chart, its face's affine UV map at the corner's projection.
+ * That is where a texture painted on A, with the usual gutter dilation,
+ * is read. across_seam is the share of corners compared that way.
+ * nearest_*: the plain measure, A's UV at the closest point of the whole
+ * surface whatever its chart (a corner past a seam then counts the
+ * distance between the two charts' places in the atlas).
  * Inputs: a, b meshes with UVs.
  * Outputs: *res.
  * Returns NEUV_OK, NEUV_ERR_INPUT (a mesh without faces or UVs), NEUV_ERR_NOMEM. */
