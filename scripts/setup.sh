@@ -11,6 +11,7 @@ PACKAGES=(
   libassimp-dev                      # mesh formats (STL, glTF/GLB, ...)
   libpng-dev zlib1g-dev              # preview pictures
   libmeshoptimizer-dev               # simplification for large meshes
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev  # isotropic remeshing (header-only CGAL; GMP/MPFR for exact predicates)
   python3-scipy python3-numpy        # benchmarks only (SciPy reference)
 )
 

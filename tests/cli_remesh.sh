@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # neuv remesh and neuv compare: face counts of simplified and subdivided
-# spot.obj, a file compared with itself and with its jittered subdivision,
-# JSON keys, and one-line errors with exit code 2.
+# spot.obj, isotropic remeshing towards a face count or an edge length,
+# a file compared with itself and with its jittered subdivision, JSON keys,
+# and one-line errors with exit code 2.
 # usage: cli_remesh.sh /path/to/neuv
 set -u
 NEUV=${1:?usage: cli_remesh.sh /path/to/neuv}
@@ -76,7 +77,43 @@ EOF2
 fi
 if "$NEUV" compare "$TMP/grid.obj" "$TMP/grid.obj" >"$TMP/out" 2>&1 && grep -q "mean 0 " "$TMP/out"; then ok; else bad "compare text: $(cat "$TMP/out")"; fi
 
+# Isotropic remeshing of a built-in shape: the face count near the target,
+# the summary line, --jitter after it, and an edge length on the flat grid.
+if "$NEUV" shape cube -o "$TMP/cube.obj" >/dev/null 2>"$TMP/err"; then
+    if "$NEUV" remesh "$TMP/cube.obj" -o "$TMP/cube_iso.obj" --faces 1000 >"$TMP/out" 2>"$TMP/err"; then
+        n=$(faces "$TMP/cube_iso.obj")
+        if [ "$n" -ge 750 ] && [ "$n" -le 1250 ] && grep -q "isotropic: 3072 -> $n faces (target 1000" "$TMP/out" &&
+           grep -q "feature edges kept" "$TMP/out" && grep -q "max distance to the input" "$TMP/out"; then ok
+        else bad "cube --faces 1000: $n faces, $(cat "$TMP/out")"; fi
+    else bad "cube --faces 1000: $(cat "$TMP/err")"; fi
+    if "$NEUV" remesh "$TMP/cube.obj" -o "$TMP/cube_isoj.obj" --faces 1000 --jitter >"$TMP/out" 2>"$TMP/err" &&
+       [ "$(faces "$TMP/cube_isoj.obj")" -eq "$(faces "$TMP/cube_iso.obj")" ] && grep -q "jitter" "$TMP/out" &&
+       ! cmp -s "$TMP/cube_iso.obj" "$TMP/cube_isoj.obj"; then ok
+    else bad "cube --faces 1000 --jitter: $(cat "$TMP/err")"; fi
+else bad "neuv shape cube: $(cat "$TMP/err")"; fi
+if "$NEUV" remesh "$TMP/grid.obj" -o "$TMP/g_iso.obj" --isotropic 0.1 >"$TMP/out" 2>"$TMP/err" &&
+   [ "$(faces "$TMP/g_iso.obj")" -gt $((GF * 4)) ] && ! grep -q '^vt ' "$TMP/g_iso.obj"; then ok
+else bad "grid --isotropic 0.1: $(cat "$TMP/err")"; fi
+
 # Errors: one line, exit 2.
+expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --isotropic -1
+expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --isotropic 0
+expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --isotropic abc
+expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --isotropic 0.1 --faces 100
+expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --faces 3
+expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --faces 1.5
+expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --faces 100 --subdivide 1
+expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --isotropic 1e-9
+# A Moebius strip survives cleaning (left as it is, with a warning) but has
+# no orientation for the remesher: exit 2, the error names it.
+printf '%s\n' 'v 0.7 0 0' 'v 1.3 0 0' 'v 0.3701 0.641 -0.15' 'v 0.6299 1.091 0.15' 'v -0.425 0.7361 -0.2598' \
+    'v -0.575 0.9959 0.2598' 'v -1 0 -0.3' 'v -1 0 0.3' 'v -0.575 -0.9959 -0.2598' 'v -0.425 -0.7361 0.2598' \
+    'v 0.6299 -1.091 -0.15' 'v 0.3701 -0.641 0.15' 'f 1 3 4' 'f 1 4 2' 'f 3 5 6' 'f 3 6 4' 'f 5 7 8' 'f 5 8 6' \
+    'f 7 9 10' 'f 7 10 8' 'f 9 11 12' 'f 9 12 10' 'f 11 2 1' 'f 11 1 12' >"$TMP/moebius.obj"
+"$NEUV" remesh "$TMP/moebius.obj" -o "$TMP/x.obj" --faces 100 >/dev/null 2>"$TMP/err"
+rc=$?
+if [ "$rc" -eq 2 ] && [ "$(grep -c 'error:' "$TMP/err")" -eq 1 ] && grep -q "Moebius" "$TMP/err"; then ok
+else bad "moebius --faces 100 -> rc $rc, stderr: $(cat "$TMP/err")"; fi
 expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --simplify 0
 expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --simplify 1.5
 expect_error remesh "$TMP/grid.obj" -o "$TMP/x.obj" --subdivide 0
@@ -100,6 +137,10 @@ if [ -f "$MESHES/spot.obj" ]; then
     else bad "spot --simplify 0.5: $(cat "$TMP/err")"; fi
     if "$NEUV" remesh "$MESHES/spot.obj" -o "$TMP/spotj.obj" --subdivide 1 --jitter >/dev/null 2>"$TMP/err" &&
        [ "$(faces "$TMP/spotj.obj")" -eq $((SF * 4)) ]; then ok; else bad "spot --subdivide 1 --jitter: $(cat "$TMP/err")"; fi
+    if "$NEUV" remesh "$MESHES/spot.obj" -o "$TMP/spot_iso.obj" --faces $((SF * 2)) >/dev/null 2>"$TMP/err"; then
+        n=$(faces "$TMP/spot_iso.obj")
+        if [ "$n" -ge $((SF * 2 * 90 / 100)) ] && [ "$n" -le $((SF * 2 * 110 / 100)) ]; then ok; else bad "spot --faces $((SF * 2)): $n faces"; fi
+    else bad "spot --faces $((SF * 2)): $(cat "$TMP/err")"; fi
     if "$NEUV" compare "$MESHES/spot.obj" "$MESHES/spot.obj" >"$TMP/out" 2>&1 && grep -q "mean 0 " "$TMP/out"; then ok
     else bad "spot compared with itself: $(cat "$TMP/out")"; fi
     if command -v python3 >/dev/null; then

@@ -1,7 +1,12 @@
 /* neuv remesh IN -o OUT [--simplify R] [--subdivide N [--loop]] [--jitter] [--seed S]
+ * neuv remesh IN -o OUT (--isotropic L | --faces N) [--jitter] [--seed S]
  * Another discretization of the same surface: simplification (meshoptimizer),
  * midpoint or Loop subdivision, and jitter within the surface, applied in
- * that order (at least one of them). The input is cleaned first. */
+ * that order (at least one of them); or an isotropic remeshing (CGAL) that
+ * shares no vertex with the input off its feature and boundary polylines,
+ * optionally jittered.
+ * The input is cleaned first. */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
@@ -10,22 +15,27 @@
 #include "cli/commands.h"
 #include "core/timer.h"
 #include "mesh/clean.h"
+#include "remesh/isotropic_remesh.h"
 #include "remesh/jitter.h"
 #include "remesh/simplify.h"
 #include "remesh/subdivide.h"
 
-#define REMESH_USAGE "usage: neuv remesh IN -o OUT (--simplify R | --subdivide N [--loop]) [--jitter] [--seed S]"
+#define REMESH_USAGE "usage: neuv remesh IN -o OUT (--simplify R | --subdivide N [--loop] | --isotropic L | --faces N) " \
+                     "[--jitter] [--seed S]"
 
 int cmd_remesh(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
-    double ratio = -1;
+    double ratio = -1, edge_length = 0;
     int rounds = 0, loop = 0, jitter = 0, seed = 1, have_simplify = 0, have_subdivide = 0, bad = 0;
+    int target_faces = 0, have_isotropic = 0, have_faces = 0;
     for (int i = 1; i < argc && !bad; i++) {
         if (cli_arg_global(argc, argv, &i, &bad)) continue;
         if (cli_arg_str(argc, argv, &i, "-o", &out, &bad)) continue;
         if (cli_arg_double(argc, argv, &i, "--simplify", &ratio, &bad)) { have_simplify = 1; continue; }
         if (cli_arg_int(argc, argv, &i, "--subdivide", &rounds, &bad)) { have_subdivide = 1; continue; }
+        if (cli_arg_double(argc, argv, &i, "--isotropic", &edge_length, &bad)) { have_isotropic = 1; continue; }
+        if (cli_arg_int(argc, argv, &i, "--faces", &target_faces, &bad)) { have_faces = 1; continue; }
         if (cli_arg_int(argc, argv, &i, "--seed", &seed, &bad)) continue;
         if (!strcmp(argv[i], "--loop")) { loop = 1; continue; }
         if (!strcmp(argv[i], "--jitter")) { jitter = 1; continue; }
@@ -35,8 +45,17 @@ int cmd_remesh(int argc, char **argv)
     }
     if (bad) return 2;
     if (!in || !out) return cli_error(NULL, REMESH_USAGE);
-    if (!have_simplify && !have_subdivide && !jitter)
-        return cli_error(NULL, "remesh: nothing to do: give --simplify R, --subdivide N or --jitter");
+    if (!have_simplify && !have_subdivide && !have_isotropic && !have_faces && !jitter)
+        return cli_error(NULL, "remesh: nothing to do: give --simplify R, --subdivide N, --isotropic L, --faces N "
+                               "or --jitter");
+    if (have_isotropic && have_faces)
+        return cli_error(NULL, "--isotropic L and --faces N are two ways to give the same target: give one");
+    if ((have_isotropic || have_faces) && (have_simplify || have_subdivide))
+        return cli_error(NULL, "--%s builds a new triangulation: it does not combine with --simplify or --subdivide",
+                         have_isotropic ? "isotropic" : "faces");
+    if (have_isotropic && !(edge_length > 0))
+        return cli_error(NULL, "--isotropic expects an edge length > 0, got %g", edge_length);
+    if (have_faces && target_faces < 4) return cli_error(NULL, "--faces expects at least 4 faces, got %d", target_faces);
     if (have_simplify && !(ratio > 0 && ratio <= 1))
         return cli_error(NULL, "--simplify expects a ratio in (0, 1], got %g", ratio);
     if (have_subdivide && (rounds < 1 || rounds > 5))
@@ -65,6 +84,27 @@ int cmd_remesh(int argc, char **argv)
             return cli_fail(in, st);
         }
         printf("  subdivide %d (%s): %d -> %d faces\n", rounds, loop ? "loop" : "midpoint", m->nf, s->nf);
+        mesh_free(m);
+        m = s;
+    }
+    if (have_isotropic || have_faces) {
+        isotropic_options io;
+        isotropic_report ir;
+        isotropic_default_options(&io);
+        io.target_edge_length = have_isotropic ? edge_length : 0;
+        io.target_faces = have_faces ? target_faces : 0;
+        neuv_mesh *s;
+        if ((st = mesh_remesh_isotropic(m, &io, &s, &ir))) { mesh_free(m); return cli_fail(in, st); }
+        double lo[3], hi[3];
+        mesh_bounding_box(m, lo, hi);
+        double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        char target[64] = "";
+        if (have_faces) snprintf(target, sizeof target, " (target %d, %d round%s)", target_faces, ir.rounds,
+                                 ir.rounds == 1 ? "" : "s");
+        printf("  isotropic: %d -> %d faces%s, edge length %.4g, %d feature edges kept (%d in the input), "
+               "max distance to the input %.2g of the bounding-box diagonal\n", ir.faces_in, ir.faces_out, target,
+               ir.edge_length, ir.feature_edges_out, ir.feature_edges_in, diag > 0 ? ir.max_distance / diag : 0.0);
         mesh_free(m);
         m = s;
     }

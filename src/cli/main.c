@@ -26,7 +26,7 @@ static const command commands[] = {
     {"inspect", cmd_inspect, "inspect M.neuv [--json]   a checkpoint's configuration and tensors"},
     {"segment", cmd_segment, "segment IN -o OUT [--charts auto|K] [--max-distortion X] [--features hks|xyz] [--preset fast|paper] [--seed S] [--iters N] [--preview PREFIX] [--no-cache] [--json]   PatchNet chart id per face"},
     {"demo", cmd_demo, "demo [-o DIR]   the whole pipeline on a built-in procedural shape"},
-    {"remesh", cmd_remesh, "remesh IN -o OUT (--simplify R | --subdivide N [--loop]) [--jitter] [--seed S]   another discretization of the same surface"},
+    {"remesh", cmd_remesh, "remesh IN -o OUT (--simplify R | --subdivide N [--loop] | --isotropic L | --faces N) [--jitter] [--seed S]   another discretization of the same surface"},
     {"train", cmd_train, "train -o M.neuv IN... [--charts auto|K] [--preset fast|paper] [--iters N] [--patch-iters N] [--seed S] [--report R.json]   a category model: unwrap unseen shapes by inference"},
     {"shape", cmd_shape, "shape NAME -o OUT [--member I]   a built-in procedural shape (bent-capsule: a family for category models)"},
     {"compare", cmd_compare, "compare A_UV B_UV [--json]   UV consistency of two UV maps of the same surface"},
