@@ -155,6 +155,56 @@ static void test_fill_rule(void)
     mesh_free(m);
 }
 
+/* Chart pairs sharing a pixel centre: the unit-square grid cut into four
+ * quadrant charts tiles the square (no pair, as the fill rule promises);
+ * moving the top-right chart left by a tenth puts it on the top-left one
+ * only, and a chart put on all three others meets all three. */
+static void test_overlap_pairs(void)
+{
+    neuv_mesh *m = shape_grid(8, 8, 1.0, 1.0, 1);
+    int *chart = malloc(sizeof(int) * m->nf), *pairs = NULL, np = -1;
+    for (int f = 0; f < m->nf; f++) {
+        double cx = 0, cy = 0;
+        for (int k = 0; k < 3; k++) { cx += m->uv[2 * m->tri_uv[3 * f + k]] / 3; cy += m->uv[2 * m->tri_uv[3 * f + k] + 1] / 3; }
+        chart[f] = (cx > 0.5) + 2 * (cy > 0.5);
+    }
+    CHECK_INT(uv_overlap_chart_pairs(m->uv, m->nf, m->tri_uv, chart, 2048, &pairs, &np), NEUV_OK);
+    CHECK_INT(np, 0);
+    free(pairs);
+    /* Per-corner UVs for chart 3 alone, shifted left by 0.1. */
+    int nuv = m->nuv;
+    double *uv = malloc(sizeof(double) * 2 * (nuv + 3 * m->nf));
+    int *tuv = malloc(sizeof(int) * 3 * m->nf);
+    memcpy(uv, m->uv, sizeof(double) * 2 * nuv);
+    memcpy(tuv, m->tri_uv, sizeof(int) * 3 * m->nf);
+    for (int f = 0; f < m->nf; f++)
+        if (chart[f] == 3)
+            for (int k = 0; k < 3; k++) {
+                uv[2 * nuv] = m->uv[2 * m->tri_uv[3 * f + k]] - 0.1;
+                uv[2 * nuv + 1] = m->uv[2 * m->tri_uv[3 * f + k] + 1];
+                tuv[3 * f + k] = nuv++;
+            }
+    CHECK_INT(uv_overlap_chart_pairs(uv, m->nf, tuv, chart, 2048, &pairs, &np), NEUV_OK);
+    CHECK_INT(np, 1);
+    if (np == 1) { CHECK_INT(pairs[0], 2); CHECK_INT(pairs[1], 3); }
+    free(pairs);
+    /* Chart 3 shrunk to a small square about the centre: on all three others. */
+    for (int f = 0; f < m->nf; f++)
+        if (chart[f] == 3)
+            for (int k = 0; k < 3; k++) {
+                double *q = uv + 2 * tuv[3 * f + k];
+                q[0] = 0.5 + 0.4 * (q[0] + 0.1 - 0.75);
+                q[1] = 0.5 + 0.4 * (q[1] - 0.75);
+            }
+    CHECK_INT(uv_overlap_chart_pairs(uv, m->nf, tuv, chart, 2048, &pairs, &np), NEUV_OK);
+    CHECK_INT(np, 3);
+    if (np == 3) { CHECK_INT(pairs[0], 0); CHECK_INT(pairs[1], 3); CHECK_INT(pairs[4], 2); CHECK_INT(pairs[5], 3); }
+    free(pairs);
+    CHECK_INT(uv_overlap_chart_pairs(uv, m->nf, tuv, chart, 0, &pairs, &np), NEUV_ERR_INPUT);
+    free(uv); free(tuv); free(chart);
+    mesh_free(m);
+}
+
 /* docs/metrics.md's raster rule written out pixel by pixel, independently
  * of the span rasterizer in src/metrics/uv_overlap.c. */
 static int brute_inside(double ax, double ay, double bx, double by, double cx, double cy)
@@ -373,6 +423,7 @@ int main(void)
     test_one_flip();
     test_fold();
     test_fill_rule();
+    test_overlap_pairs();
     test_raster_matches_rule();
     test_stacked();
     test_two_charts();

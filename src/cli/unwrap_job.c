@@ -20,7 +20,10 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
         s = unwrap_model_load(job->model, &md);
         if (s != NEUV_OK) return cli_fail(job->model, s);
         const char *what = job->input_name;
-        if (md->category) {
+        if (md->category && job->lscm_baseline) {
+            s = neuv_fail(NEUV_ERR_INPUT, "--lscm-baseline needs a surface model, not a category model");
+            what = job->model;
+        } else if (md->category) {
             if (job->refine >= 0) md->refine = job->refine;
             if (job->check_inference) {
                 s = neuv_fail(NEUV_ERR_INPUT, "--check-inference needs a surface model, not a category model");
@@ -31,7 +34,7 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
                                           "apply to category models (neuv train)");
             what = job->model;
         } else {
-            unwrap_apply_options ao = {opts->threads, opts->use_cache, job->check_inference};
+            unwrap_apply_options ao = {opts->threads, opts->use_cache, job->check_inference, 0, job->lscm_baseline};
             s = unwrap_apply(mesh, md, &ao, &r);
         }
         if (s == NEUV_OK && job->save_model) {
@@ -71,8 +74,12 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
         const uv_metrics *mt = &r->metrics;
         char sources[256];
         unwrap_source_summary(r, sources, sizeof sources);
-        printf("%s: %d charts (%s), qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f, %.1f s -> %s\n",
-               job->input_name, r->n_charts, sources, mt->qce_mean, mt->flipped, mt->overlap_fraction,
+        char moved[96] = "";
+        if (r->model.moved_charts > 0)
+            snprintf(moved, sizeof moved, ", %d chart%s moved from the model's layout", r->model.moved_charts,
+                     r->model.moved_charts == 1 ? "" : "s");
+        printf("%s: %d charts (%s)%s, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f, %.1f s -> %s\n",
+               job->input_name, r->n_charts, sources, moved, mt->qce_mean, mt->flipped, mt->overlap_fraction,
                mt->packing_efficiency, job->load_seconds + r->total_seconds + export_seconds, job->output);
         if (r->n_repairs > 0) printf("  %d repairs (listed in the report)\n", r->n_repairs);
         if (r->model.trained_on_copy)

@@ -201,3 +201,128 @@ double uv_coverage_overlap_fraction(const uv_coverage *c)
 {
     return c->covered > 0 ? (double)c->overlapped / (double)c->covered : 0.0;
 }
+
+/* One covered run of pixel centres of one chart in one row. */
+typedef struct chart_span_px {
+    int row, lo, hi, chart;
+} chart_span_px;
+
+static int key_order(const void *x, const void *y)
+{
+    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+    return (a > b) - (a < b);
+}
+
+neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, const int *face_chart,
+                                   int resolution, int **pairs_out, int *n_pairs)
+{
+    *pairs_out = NULL;
+    *n_pairs = 0;
+    if (resolution < 1 || resolution > 32768)
+        return neuv_fail(NEUV_ERR_INPUT, "raster resolution %d is outside [1, 32768]", resolution);
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (size_t c = 0; c < 3 * (size_t)(nf > 0 ? nf : 0); c++)
+        for (int d = 0; d < 2; d++) {
+            double q = uv[2 * (size_t)tri_uv[c] + d];
+            if (q < lo[d]) lo[d] = q;
+            if (q > hi[d]) hi[d] = q;
+        }
+    double side = fmax(hi[0] - lo[0], hi[1] - lo[1]);
+    if (!(side > 0) || !isfinite(side)) return NEUV_OK;
+    double s = resolution / side;
+    int width = (int)clamp_index(ceil((hi[0] - lo[0]) * s), resolution);
+    int height = (int)clamp_index(ceil((hi[1] - lo[1]) * s), resolution);
+    if (width < 1) width = 1;
+    if (height < 1) height = 1;
+    size_t cap = 4 * (size_t)(nf > 0 ? nf : 1), n = 0;
+    chart_span_px *sp = malloc(sizeof *sp * cap);
+    if (!sp) return neuv_fail_nomem("overlap raster");
+    for (int f = 0; f < nf; f++) {
+        double x[3], y[3];
+        for (int k = 0; k < 3; k++) {
+            const double *q = uv + 2 * (size_t)tri_uv[3 * (size_t)f + k];
+            x[k] = (q[0] - lo[0]) * s;
+            y[k] = (q[1] - lo[1]) * s;
+        }
+        double area2 = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+        if (area2 == 0) continue;
+        int b = area2 > 0 ? 1 : 2, c = area2 > 0 ? 2 : 1;
+        raster_edge e[3];
+        edge_setup(&e[0], x[0], y[0], x[b], y[b]);
+        edge_setup(&e[1], x[b], y[b], x[c], y[c]);
+        edge_setup(&e[2], x[c], y[c], x[0], y[0]);
+        double ymin = fmin(y[0], fmin(y[1], y[2])), ymax = fmax(y[0], fmax(y[1], y[2]));
+        double xmin = fmin(x[0], fmin(x[1], x[2])), xmax = fmax(x[0], fmax(x[1], x[2]));
+        int j0 = (int)clamp_index(floor(ymin - 0.5), height - 1), j1 = (int)clamp_index(ceil(ymax - 0.5), height - 1);
+        int i0 = (int)clamp_index(floor(xmin - 0.5), width - 1), i1 = (int)clamp_index(ceil(xmax - 0.5), width - 1);
+        for (int j = j0; j <= j1; j++) {
+            int span_lo = i0, span_hi = i1;
+            for (int k = 0; k < 3 && span_lo <= span_hi; k++) edge_clip_span(&e[k], j + 0.5, &span_lo, &span_hi);
+            if (span_lo > span_hi) continue;
+            if (n == cap) {
+                chart_span_px *g = realloc(sp, sizeof *sp * cap * 2);
+                if (!g) { free(sp); return neuv_fail_nomem("overlap raster"); }
+                sp = g;
+                cap *= 2;
+            }
+            sp[n++] = (chart_span_px){j, span_lo, span_hi, face_chart[f]};
+        }
+    }
+    /* By row (counting sort); then each row is painted with chart ids, and a
+     * pixel centre painted by another chart gives a pair. */
+    int *row_start = calloc((size_t)height + 1, sizeof *row_start);
+    chart_span_px *sorted = malloc(sizeof *sorted * (n > 0 ? n : 1));
+    int *owner = malloc(sizeof *owner * (size_t)width);
+    size_t kcap = 64, nk = 0;
+    uint64_t *keys = malloc(sizeof *keys * kcap);
+    if (!row_start || !sorted || !owner || !keys) {
+        free(sp); free(row_start); free(sorted); free(owner); free(keys);
+        return neuv_fail_nomem("overlap raster");
+    }
+    for (size_t i = 0; i < n; i++) row_start[sp[i].row + 1]++;
+    for (int j = 0; j < height; j++) row_start[j + 1] += row_start[j];
+    for (size_t i = 0; i < n; i++) sorted[row_start[sp[i].row]++] = sp[i];
+    for (int j = height; j > 0; j--) row_start[j] = row_start[j - 1];
+    row_start[0] = 0;
+    free(sp);
+    sp = sorted;
+    uint64_t last = UINT64_MAX;
+    for (int j = 0; j < height; j++) {
+        if (row_start[j] == row_start[j + 1]) continue;
+        for (int i = 0; i < width; i++) owner[i] = -1;
+        for (int k = row_start[j]; k < row_start[j + 1]; k++) {
+            const chart_span_px *t = &sp[k];
+            for (int i = t->lo; i <= t->hi; i++) {
+                int o = owner[i];
+                owner[i] = t->chart;
+                if (o < 0 || o == t->chart) continue;
+                int p = o < t->chart ? o : t->chart, q = o < t->chart ? t->chart : o;
+                uint64_t key = (uint64_t)(uint32_t)p << 32 | (uint32_t)q;
+                if (key == last) continue;
+                if (nk == kcap) {
+                    uint64_t *g = realloc(keys, sizeof *keys * kcap * 2);
+                    if (!g) { free(sp); free(owner); free(keys); return neuv_fail_nomem("overlap raster"); }
+                    keys = g;
+                    kcap *= 2;
+                }
+                keys[nk++] = last = key;
+            }
+        }
+    }
+    free(row_start);
+    free(owner);
+    qsort(keys, nk, sizeof *keys, key_order);
+    size_t nu = 0;
+    for (size_t k = 0; k < nk; k++)
+        if (nu == 0 || keys[k] != keys[nu - 1]) keys[nu++] = keys[k];
+    int *pairs = malloc(sizeof *pairs * 2 * (nu > 0 ? nu : 1));
+    if (!pairs) { free(sp); free(keys); return neuv_fail_nomem("overlap raster"); }
+    for (size_t k = 0; k < nu; k++) {
+        pairs[2 * k] = (int)(keys[k] >> 32);
+        pairs[2 * k + 1] = (int)(keys[k] & 0xffffffffu);
+    }
+    free(sp); free(keys);
+    *pairs_out = pairs;
+    *n_pairs = (int)nu;
+    return NEUV_OK;
+}

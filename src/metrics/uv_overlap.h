@@ -27,6 +27,16 @@ typedef struct uv_coverage {
 neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
                               const unsigned char *face_mask, int resolution, uv_coverage *out);
 
+/* The pairs of charts that share a covered pixel centre, under the same
+ * rule and raster as uv_coverage_count over all faces.
+ * Inputs: uv, nf, tri_uv as above; face_chart (#F) chart id per face;
+ *         resolution as above.
+ * Outputs: *pairs (2 x *n_pairs ints, a < b per pair, sorted; caller frees;
+ *          NULL when there is none), *n_pairs.
+ * Returns NEUV_OK, NEUV_ERR_INPUT (resolution), NEUV_ERR_NOMEM. */
+neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, const int *face_chart,
+                                   int resolution, int **pairs, int *n_pairs);
+
 /* overlapped / covered (0 when nothing is covered). */
 double uv_coverage_overlap_fraction(const uv_coverage *c);
 

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "atlas/footprint.h"
+#include "atlas/occupancy.h"
 #include "charts/charts.h"
 #include "charts/face_graph.h"
 #include "core/error.h"
@@ -21,12 +23,13 @@
 #include "nn/nn.h"
 #include "remesh/simplify.h"
 #include "spatial/bvh.h"
+#include "spatial/triangle_closest_point.h"
 #include "unwrap/chart_uv_check.h"
 #include "unwrap/unwrap_internal.h"
 
 /* Resolution of the atlas overlap test: the one of the overlap metric. */
 #define OVERLAP_RESOLUTION 2048
-#define MAX_SHRINK_ROUNDS 12
+#define MAX_SHRINK_ROUNDS 6
 
 /* ---- charts by closest point ------------------------------------------ */
 
@@ -35,14 +38,15 @@
  * corner; ties go to the centroid's). One point is not enough on a coarse
  * mesh: a long triangle cutting a curved region has its centroid nearer
  * the chart next door.
- * Outputs: face_chart (#F, model chart ids), src_face (#F, under the centroid), *max_dist. */
+ * Outputs: face_chart (#F, model chart ids), src_face (#F, under the centroid),
+ * vertex_chart (#V, the model chart under each vertex), *max_dist. */
 static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, int *face_chart, int *src_face,
-                                   double *max_dist)
+                                   int *vertex_chart, double *max_dist)
 {
     bvh b;
     neuv_status s = bvh_build(&b, md->source);
     if (s) return s;
-    size_t np = 4 * (size_t)m->nf;
+    size_t np = 4 * (size_t)m->nf > (size_t)m->nv ? 4 * (size_t)m->nf : (size_t)m->nv;
     double *pt = malloc(sizeof(double) * 3 * np);
     double *d2 = malloc(sizeof(double) * np);
     int *sf = malloc(sizeof(int) * np);
@@ -76,6 +80,8 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
         if (d2[4 * (size_t)f] > worst) worst = d2[4 * (size_t)f];
     }
     *max_dist = sqrt(worst);
+    bvh_closest_points(&b, m->nv, m->pos, sf, NULL, NULL);
+    for (int v = 0; v < m->nv; v++) vertex_chart[v] = md->face_chart[sf[v]];
     free(pt); free(d2); free(sf);
     bvh_free(&b);
     return NEUV_OK;
@@ -182,31 +188,23 @@ static void align_similarity(double *uv, const double *target, int n)
     }
 }
 
-/* Barycentric coordinates of p's projection onto the plane of triangle abc,
- * unclamped: outside the triangle some are negative, so the triangle's
- * affine UV map extends linearly past it. */
-static void plane_barycentric(const double *a, const double *b, const double *c, const double *p, double w[3])
-{
-    double e0[3], e1[3], e2[3];
-    for (int q = 0; q < 3; q++) { e0[q] = b[q] - a[q]; e1[q] = c[q] - a[q]; e2[q] = p[q] - a[q]; }
-    double d00 = 0, d01 = 0, d11 = 0, d20 = 0, d21 = 0;
-    for (int q = 0; q < 3; q++) {
-        d00 += e0[q] * e0[q]; d01 += e0[q] * e1[q]; d11 += e1[q] * e1[q];
-        d20 += e2[q] * e0[q]; d21 += e2[q] * e1[q];
-    }
-    double den = d00 * d11 - d01 * d01;
-    if (!(fabs(den) > 0)) { w[0] = 1; w[1] = w[2] = 0; return; }
-    w[1] = (d11 * d20 - d01 * d21) / den;
-    w[2] = (d00 * d21 - d01 * d20) / den;
-    w[0] = 1 - w[1] - w[2];
-}
-
-/* Source UVs of chart mc at the piece's vertices: the closest face of that
- * chart and its UV map, extended linearly. Clamping to the chart instead
- * (plain barycentric of the closest point) would pile every vertex outside
- * the source chart's border onto that border and fold the faces there: a
- * new triangulation's chart border zigzags across the source's. */
-static neuv_status transfer_chart_uvs(const unwrap_model *md, int mc, chart_piece *p)
+/* The source atlas seen from one chart of the new mesh.
+ * For every piece vertex, the closest point of source chart mc:
+ *   ext    (#CV by 2) the source UV there with the closest face's affine map
+ *          extended past it (plane barycentric weights), so a vertex past the
+ *          source chart's border continues its map. Clamping instead (plain
+ *          barycentric of the closest point) would pile every such vertex
+ *          onto the border and fold the faces there: a new triangulation's
+ *          chart border zigzags across the source's.
+ *   anchor (#CV by 2) the source UV at the closest point itself (on the
+ *          chart: inside its island of the atlas).
+ *   delta  (#CV by 2, may be NULL; only for a network chart) the source
+ *          atlas minus the networks' map placed by the chart's transform,
+ *          interpolated at the closest point: what the source's refinement
+ *          added to the networks' map.
+ *   closest (#CV by 3) the closest point itself. */
+static neuv_status source_chart_uvs(const unwrap_model *md, int mc, const chart_piece *p, double *ext, double *anchor,
+                                    double *delta, double *closest)
 {
     neuv_mesh *ssub = NULL;
     int *svmap = NULL, *sfmap = NULL;
@@ -215,25 +213,54 @@ static neuv_status transfer_chart_uvs(const unwrap_model *md, int mc, chart_piec
     bvh b;
     memset(&b, 0, sizeof b);
     s = bvh_build(&b, ssub);
-    int *face = malloc(sizeof(int) * (size_t)p->sub->nv);
-    if (s == NEUV_OK && !face) s = neuv_fail_nomem("UV transfer");
+    int n = p->sub->nv;
+    int *face = malloc(sizeof(int) * (size_t)n);
+    double *bary = malloc(sizeof(double) * 3 * (size_t)n);
+    double *suv = malloc(sizeof(double) * 2 * (size_t)ssub->nv), *sd = NULL;
+    if (s == NEUV_OK && (!face || !bary || !suv)) s = neuv_fail_nomem("UV transfer");
     if (s == NEUV_OK) {
-        bvh_closest_points(&b, p->sub->nv, p->sub->pos, face, NULL, NULL);
-        for (int v = 0; v < p->sub->nv; v++) {
+        /* The source chart's per-vertex UVs (a chart is one island: one UV per vertex). */
+        for (int f = 0; f < ssub->nf; f++)
+            for (int k = 0; k < 3; k++)
+                memcpy(suv + 2 * (size_t)ssub->tri[3 * f + k],
+                       md->source->uv + 2 * (size_t)md->source->tri_uv[3 * (size_t)sfmap[f] + k], sizeof(double) * 2);
+        if (delta) {
+            int net = md->chart_net[mc];
+            sd = malloc(sizeof(double) * 2 * (size_t)ssub->nv);
+            if (!sd) s = neuv_fail_nomem("UV transfer");
+            else s = param_net_apply(md->param, net, ssub->pos, ssub->nv, sd);
+            for (int v = 0; s == NEUV_OK && v < ssub->nv; v++) {
+                double q[2] = {md->chart_mirrored[mc] ? -sd[2 * v] : sd[2 * v], sd[2 * v + 1]}, o[2];
+                atlas_chart_transform_apply(&md->xf[mc], q, o);
+                sd[2 * v] = suv[2 * v] - o[0];
+                sd[2 * v + 1] = suv[2 * v + 1] - o[1];
+            }
+        }
+    }
+    if (s == NEUV_OK) {
+        bvh_closest_points(&b, n, p->sub->pos, face, bary, NULL);
+        for (int v = 0; v < n; v++) {
             const int *t = ssub->tri + 3 * face[v];
-            double w[3];
-            plane_barycentric(ssub->pos + 3 * t[0], ssub->pos + 3 * t[1], ssub->pos + 3 * t[2], p->sub->pos + 3 * v, w);
-            int f = sfmap[face[v]];
-            p->uv[2 * v] = p->uv[2 * v + 1] = 0;
-            for (int k = 0; k < 3; k++) {
-                const double *u = md->source->uv + 2 * md->source->tri_uv[3 * f + k];
-                p->uv[2 * v] += w[k] * u[0];
-                p->uv[2 * v + 1] += w[k] * u[1];
+            const double *wc = bary + 3 * (size_t)v;
+            double wp[3];
+            triangle_barycentric(ssub->pos + 3 * t[0], ssub->pos + 3 * t[1], ssub->pos + 3 * t[2], p->sub->pos + 3 * v, wp);
+            for (int q = 0; q < 3; q++)
+                closest[3 * v + q] = wc[0] * ssub->pos[3 * t[0] + q] + wc[1] * ssub->pos[3 * t[1] + q] + wc[2] * ssub->pos[3 * t[2] + q];
+            for (int q = 0; q < 2; q++) {
+                double e = 0, a = 0, d = 0;
+                for (int k = 0; k < 3; k++) {
+                    e += wp[k] * suv[2 * t[k] + q];
+                    a += wc[k] * suv[2 * t[k] + q];
+                    if (sd) d += wc[k] * sd[2 * t[k] + q];
+                }
+                ext[2 * v + q] = e;
+                anchor[2 * v + q] = a;
+                if (delta) delta[2 * v + q] = d;
             }
         }
     }
     bvh_free(&b);
-    free(face);
+    free(face); free(bary); free(suv); free(sd);
     mesh_free(ssub); free(svmap); free(sfmap);
     return s;
 }
@@ -369,6 +396,7 @@ static int reflatten(chart_piece *p, const double *target, double *scratch, cons
 typedef struct chart_span {
     int first, count;   /* range of the chart's UVs in m->uv */
     int repaired;
+    int moved;          /* 1: no longer where the source atlas put it */
     double lo[2], hi[2];
 } chart_span;
 
@@ -383,103 +411,240 @@ static void span_bounds(const neuv_mesh *m, chart_span *sp)
         }
 }
 
-/* Overlapped pixel centres of two charts drawn together. Faces are listed by
- * chart (order, first: n_charts + 1), so a pair costs its own faces only. */
-static neuv_status pair_overlap(const neuv_mesh *m, const int *order, const int *first, int a, int b, int *tri,
-                                int resolution, long long *out)
+/* Faces listed by chart: order (#F), first (n_charts + 1). */
+static neuv_status faces_by_chart(const struct neuv_unwrap_result *r, int **order_out, int **first_out)
 {
-    int n = 0;
-    for (int pass = 0; pass < 2; pass++) {
-        int c = pass ? b : a;
-        for (int k = first[c]; k < first[c + 1]; k++, n++)
-            memcpy(tri + 3 * (size_t)n, m->tri_uv + 3 * (size_t)order[k], 3 * sizeof(int));
+    int nf = r->mesh->nf;
+    int *order = malloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
+    int *first = calloc((size_t)r->n_charts + 1, sizeof(int));
+    int *fill = calloc((size_t)r->n_charts + 1, sizeof(int));
+    if (!order || !first || !fill) { free(order); free(first); free(fill); return neuv_fail_nomem("overlap test"); }
+    for (int f = 0; f < nf; f++) first[r->face_chart[f] + 1]++;
+    for (int c = 0; c < r->n_charts; c++) first[c + 1] += first[c];
+    for (int f = 0; f < nf; f++) order[first[r->face_chart[f]] + fill[r->face_chart[f]]++] = f;
+    free(fill);
+    *order_out = order;
+    *first_out = first;
+    return NEUV_OK;
+}
+
+/* The pairs of charts that overlap, at the overlap metric's raster. */
+static neuv_status overlapping_pairs(const struct neuv_unwrap_result *r, int **pairs, int *n)
+{
+    const neuv_mesh *m = r->mesh;
+    return uv_overlap_chart_pairs(m->uv, m->nf, m->tri_uv, r->face_chart, OVERLAP_RESOLUTION, pairs, n);
+}
+
+static double span_area(const chart_span *sp)
+{
+    return (sp->hi[0] - sp->lo[0]) * (sp->hi[1] - sp->lo[1]);
+}
+
+/* Overlaps made by the new triangulation itself, mended without moving a
+ * chart: a face across the source's seam belongs to one side, and its
+ * corner past the seam continues its chart's map beyond the island's
+ * border, into the gutter and at worst onto the next island. Those corners
+ * (the ones whose closest source point lies in another chart) of a chart
+ * that overlaps another or leaves [0,1]^2 are pulled toward the source UV
+ * at their closest point ON their chart, which lies inside the island:
+ * first to half the packing's gap from it, then onto it. A pull that would
+ * fold the chart is relaxed locally, else undone (the chart is then left to
+ * resolve_overlaps). pieces[c].uv and anchor[c] are per piece vertex, in
+ * the atlas frame. */
+static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *span, chart_piece *pieces,
+                                     double *const *anchor, const int *model_chart, const int *vertex_chart)
+{
+    neuv_mesh *m = r->mesh;
+    int nc = r->n_charts;
+    neuv_status s = NEUV_OK;
+    unsigned char *hot = malloc((size_t)(nc > 0 ? nc : 1));
+    int maxv = 1;
+    for (int c = 0; c < nc; c++) if (pieces[c].sub->nv > maxv) maxv = pieces[c].sub->nv;
+    double *keep = malloc(sizeof(double) * 2 * (size_t)maxv), *scratch = malloc(sizeof(double) * 2 * (size_t)maxv);
+    int *pulled = calloc((size_t)(nc > 0 ? nc : 1), sizeof(int));
+    if (!hot || !keep || !scratch || !pulled) s = neuv_fail_nomem("overlap test");
+    /* How far past its island a corner may stay, per round: half the gap the
+     * packing left between islands, then none. */
+    const double reach[2] = {0.5 * r->opts.padding / (r->opts.resolution > 0 ? r->opts.resolution : 1), 0.0};
+    for (int round = 0; s == NEUV_OK && round < 2; round++) {
+        int any = 0, *pairs = NULL, np = 0;
+        for (int c = 0; c < nc; c++) {
+            span_bounds(m, &span[c]);
+            chart_span *A = &span[c];
+            hot[c] = A->lo[0] < 0 || A->lo[1] < 0 || A->hi[0] > 1 || A->hi[1] > 1;
+            any |= hot[c];
+        }
+        if ((s = overlapping_pairs(r, &pairs, &np))) break;
+        for (int k = 0; k < 2 * np; k++) hot[pairs[k]] = 1;
+        free(pairs);
+        if (!any && np == 0) break;
+        for (int c = 0; c < nc && s == NEUV_OK; c++) {
+            if (!hot[c]) continue;
+            chart_piece *p = &pieces[c];
+            int n = p->sub->nv, moved = 0;
+            double *uv = m->uv + 2 * (size_t)span[c].first;
+            memcpy(keep, uv, sizeof(double) * 2 * (size_t)n);
+            for (int v = 0; v < n; v++) {
+                if (vertex_chart[p->vmap[v]] == model_chart[c]) continue;
+                double dx = uv[2 * v] - anchor[c][2 * v], dy = uv[2 * v + 1] - anchor[c][2 * v + 1];
+                double d = sqrt(dx * dx + dy * dy);
+                if (d <= reach[round]) continue;
+                uv[2 * v] = anchor[c][2 * v] + dx * reach[round] / d;
+                uv[2 * v + 1] = anchor[c][2 * v + 1] + dy * reach[round] / d;
+                moved++;
+            }
+            if (moved == 0) continue;
+            memcpy(p->uv, uv, sizeof(double) * 2 * (size_t)n);
+            chart_uv_check chk;
+            int ok = uv_usable(p, p->uv, scratch, &chk);
+            if (ok == 0) ok = relax_folds(p, scratch);
+            if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
+            if (ok) {
+                memcpy(uv, p->uv, sizeof(double) * 2 * (size_t)n);
+                pulled[c] += moved;
+            } else {
+                memcpy(uv, keep, sizeof(double) * 2 * (size_t)n);
+                memcpy(p->uv, keep, sizeof(double) * 2 * (size_t)n);
+            }
+        }
     }
-    uv_coverage cov;
-    neuv_status s = uv_coverage_count(m->uv, n, tri, NULL, resolution, &cov);
-    *out = cov.overlapped;
+    for (int c = 0; s == NEUV_OK && c < nc; c++)
+        if (pulled[c]) {
+            r->model.pulled_vertices += pulled[c];
+            unwrap_add_repair(r, c, "%d corners past the source chart's seam overlapped or left the atlas; pulled toward "
+                              "the source chart's border (the chart stays in place)", pulled[c]);
+        }
+    free(hot); free(keep); free(scratch); free(pulled);
     return s;
 }
 
 /* Shrinks charts that overlap a neighbour until the whole atlas has no
- * overlapped pixel centre (at the metric's resolution). */
+ * overlapped pixel centre (at the metric's resolution): of each
+ * overlapping pair, the chart a fold repair re-flattened, else the smaller
+ * one, shrinks to 0.92 of its size about its centroid, once per round. */
 static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *span)
 {
     neuv_mesh *m = r->mesh;
-    int *tri = malloc(sizeof(int) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
-    int *order = malloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
-    int *first = calloc((size_t)r->n_charts + 1, sizeof(int));
-    int *shrunk = calloc((size_t)r->n_charts, sizeof(int));
-    /* last_shrunk[c]: the round chart c last shrank in (-1: never). A pair
-     * where neither shrank since the start of the previous round sits where
-     * it was when last drawn, and it did not overlap then (else one of them
-     * would have shrunk), so it is not drawn again: same result, a fraction
-     * of the pairs (a 1.4M-face atlas drew every pair of its 78 charts each round). */
-    int *last_shrunk = malloc(sizeof(int) * (size_t)(r->n_charts > 0 ? r->n_charts : 1));
-    if (!tri || !order || !first || !shrunk || !last_shrunk) {
-        free(tri); free(order); free(first); free(shrunk); free(last_shrunk);
-        return neuv_fail_nomem("overlap test");
-    }
-    for (int c = 0; c < r->n_charts; c++) last_shrunk[c] = -1;
-    for (int f = 0; f < m->nf; f++) first[r->face_chart[f] + 1]++;
-    for (int c = 0; c < r->n_charts; c++) first[c + 1] += first[c];
-    for (int f = 0, *fill = shrunk; f < m->nf; f++) order[first[r->face_chart[f]] + fill[r->face_chart[f]]++] = f;
-    memset(shrunk, 0, sizeof(int) * (size_t)r->n_charts);
+    int *shrunk = calloc((size_t)r->n_charts + 1, sizeof(int));
+    unsigned char *now = malloc((size_t)r->n_charts + 1);
+    if (!shrunk || !now) { free(shrunk); free(now); return neuv_fail_nomem("overlap test"); }
     neuv_status s = NEUV_OK;
     for (int round = 0; round < MAX_SHRINK_ROUNDS; round++) {
-        uv_coverage cov;
-        if ((s = uv_coverage_count(m->uv, m->nf, m->tri_uv, NULL, OVERLAP_RESOLUTION, &cov))) break;
-        if (cov.overlapped == 0) break;
-        int acted = 0;
-        double alo[2] = {INFINITY, INFINITY}, ahi[2] = {-INFINITY, -INFINITY};
-        for (int c = 0; c < r->n_charts; c++) {
-            span_bounds(m, &span[c]);
-            for (int q = 0; q < 2; q++) { alo[q] = fmin(alo[q], span[c].lo[q]); ahi[q] = fmax(ahi[q], span[c].hi[q]); }
-        }
-        double atlas_side = fmax(ahi[0] - alo[0], ahi[1] - alo[1]);
-        for (int a = 0; a < r->n_charts && s == NEUV_OK; a++)
-            for (int b = a + 1; b < r->n_charts; b++) {
-                if (last_shrunk[a] < round - 1 && last_shrunk[b] < round - 1) continue;
-                chart_span *A = &span[a], *B = &span[b];
-                if (A->hi[0] < B->lo[0] || B->hi[0] < A->lo[0] || A->hi[1] < B->lo[1] || B->hi[1] < A->lo[1])
-                    continue;
-                /* A pair is drawn at twice the atlas test's pixel density (the
-                 * raster spans the pair's box, not the atlas: a small pair
-                 * at the full resolution swept millions of empty pixels). */
-                double side = fmax(fmax(A->hi[0], B->hi[0]) - fmin(A->lo[0], B->lo[0]),
-                                   fmax(A->hi[1], B->hi[1]) - fmin(A->lo[1], B->lo[1]));
-                int res = atlas_side > 0 ? (int)ceil(2.0 * OVERLAP_RESOLUTION * side / atlas_side) : OVERLAP_RESOLUTION;
-                if (res < 64) res = 64;
-                if (res > OVERLAP_RESOLUTION) res = OVERLAP_RESOLUTION;
-                long long ov;
-                if ((s = pair_overlap(m, order, first, a, b, tri, res, &ov))) break;
-                if (ov == 0) continue;
-                /* The repaired chart moves; else the smaller one. */
-                int pick = A->repaired != B->repaired ? (A->repaired ? a : b)
-                         : ((A->hi[0] - A->lo[0]) * (A->hi[1] - A->lo[1]) <=
-                            (B->hi[0] - B->lo[0]) * (B->hi[1] - B->lo[1]) ? a : b);
-                chart_span *P = &span[pick];
-                double cx = 0, cy = 0;
-                for (int i = P->first; i < P->first + P->count; i++) { cx += m->uv[2 * i]; cy += m->uv[2 * i + 1]; }
-                cx /= P->count;
-                cy /= P->count;
-                for (int i = P->first; i < P->first + P->count; i++) {
-                    m->uv[2 * i] = cx + 0.92 * (m->uv[2 * i] - cx);
-                    m->uv[2 * i + 1] = cy + 0.92 * (m->uv[2 * i + 1] - cy);
-                }
-                span_bounds(m, P);
-                if (!shrunk[pick]) r->model.shrunk_charts++;
-                shrunk[pick]++;
-                last_shrunk[pick] = round;
-                acted = 1;
+        int *pairs = NULL, np = 0;
+        if ((s = overlapping_pairs(r, &pairs, &np))) break;
+        if (np == 0) { free(pairs); break; }
+        memset(now, 0, (size_t)r->n_charts + 1);
+        for (int c = 0; c < r->n_charts; c++) span_bounds(m, &span[c]);
+        for (int k = 0; k < np; k++) {
+            int a = pairs[2 * k], b = pairs[2 * k + 1];
+            chart_span *A = &span[a], *B = &span[b];
+            int pick = A->repaired != B->repaired ? (A->repaired ? a : b) : (span_area(A) <= span_area(B) ? a : b);
+            if (now[a] || now[b]) continue; /* one of them shrank this round already */
+            chart_span *P = &span[pick];
+            double cx = 0, cy = 0;
+            for (int i = P->first; i < P->first + P->count; i++) { cx += m->uv[2 * i]; cy += m->uv[2 * i + 1]; }
+            cx /= P->count;
+            cy /= P->count;
+            for (int i = P->first; i < P->first + P->count; i++) {
+                m->uv[2 * i] = cx + 0.92 * (m->uv[2 * i] - cx);
+                m->uv[2 * i + 1] = cy + 0.92 * (m->uv[2 * i + 1] - cy);
             }
-        if (!acted) break; /* overlaps the pair test cannot see: leave them to the metrics */
+            if (!shrunk[pick]) r->model.shrunk_charts++;
+            shrunk[pick]++;
+            P->moved = 1;
+            now[pick] = 1;
+        }
+        free(pairs);
     }
     for (int c = 0; c < r->n_charts && s == NEUV_OK; c++)
         if (shrunk[c])
             unwrap_add_repair(r, c, "overlapped a neighbour in the atlas; shrunk to %.3f of its size about its centroid",
                               pow(0.92, shrunk[c]));
-    free(tri); free(order); free(first);
-    free(shrunk); free(last_shrunk);
+    free(shrunk); free(now);
+    return s;
+}
+
+/* Footprint of chart c at the packing's pixel size, and its pixel origin. */
+static int chart_footprint(const neuv_mesh *m, const chart_span *sp, const int *order, const int *first, int c, int R,
+                           double *q, int *lt, footprint *fp, int *x0, int *y0)
+{
+    *x0 = (int)floor(sp->lo[0] * R);
+    *y0 = (int)floor(sp->lo[1] * R);
+    int w = (int)ceil(sp->hi[0] * R) - *x0 + 2, h = (int)ceil(sp->hi[1] * R) - *y0 + 2;
+    for (int i = 0; i < sp->count; i++) {
+        q[2 * i] = m->uv[2 * (size_t)(sp->first + i)] * R - *x0;
+        q[2 * i + 1] = m->uv[2 * (size_t)(sp->first + i) + 1] * R - *y0;
+    }
+    int n = 0;
+    for (int k = first[c]; k < first[c + 1]; k++, n++)
+        for (int j = 0; j < 3; j++) lt[3 * n + j] = m->tri_uv[3 * (size_t)order[k] + j] - sp->first;
+    return footprint_rasterize(q, lt, n, w, h, fp);
+}
+
+/* Last resort for the no-overlap guarantee, after the shrinking: the
+ * smaller chart of each pair that still overlaps moves, at its size, to the
+ * lowest-then-leftmost free place of the atlas (the packing's pixel grid and
+ * padding) with every other chart kept where it is. The rest of the layout
+ * stays the source's; each move is reported. */
+static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span *span)
+{
+    neuv_mesh *m = r->mesh;
+    int nc = r->n_charts, R = r->opts.resolution > 0 ? r->opts.resolution : 1024, pad = r->opts.padding;
+    int *pairs = NULL, np = 0;
+    neuv_status s = overlapping_pairs(r, &pairs, &np);
+    if (s || np == 0) { free(pairs); return s; }
+    int *order = NULL, *first = NULL;
+    if ((s = faces_by_chart(r, &order, &first))) { free(pairs); return s; }
+    int maxv = 1, maxf = 1;
+    for (int c = 0; c < nc; c++) {
+        span_bounds(m, &span[c]);
+        if (span[c].count > maxv) maxv = span[c].count;
+        if (first[c + 1] - first[c] > maxf) maxf = first[c + 1] - first[c];
+    }
+    unsigned char *move = calloc((size_t)nc + 1, 1);
+    double *q = malloc(sizeof(double) * 2 * (size_t)maxv);
+    int *lt = malloc(sizeof(int) * 3 * (size_t)maxf);
+    occupancy occ;
+    int occ_ok = occupancy_init(&occ, R, pad) == 0;
+    if (!move || !q || !lt || !occ_ok) s = neuv_fail_nomem("chart placement");
+    for (int k = 0; s == NEUV_OK && k < np; k++) {
+        int a = pairs[2 * k], b = pairs[2 * k + 1];
+        if (!move[a] && !move[b]) move[span_area(&span[a]) <= span_area(&span[b]) ? a : b] = 1;
+    }
+    free(pairs);
+    for (int pass = 0; pass < 2 && s == NEUV_OK; pass++) /* the charts that stay, then the ones that move */
+        for (int c = 0; c < nc && s == NEUV_OK; c++) {
+            if (move[c] != pass || span[c].count == 0) continue;
+            footprint fp, dil;
+            memset(&dil, 0, sizeof dil);
+            int x0, y0;
+            if (chart_footprint(m, &span[c], order, first, c, R, q, lt, &fp, &x0, &y0)) { s = neuv_fail_nomem("chart placement"); break; }
+            int x = x0, y = y0, found = 1;
+            if (pass == 1) {
+                footprint_spans fs;
+                if (footprint_to_spans(&fp, &fs)) { footprint_free(&fp); s = neuv_fail_nomem("chart placement"); break; }
+                found = occupancy_find(&occ, &fs, R, &x, &y);
+                footprint_spans_free(&fs);
+            }
+            if (found && footprint_dilate(&fp, pad, &dil) == 0) occupancy_mark(&occ, &dil, x - pad, y - pad);
+            footprint_free(&fp);
+            footprint_free(&dil);
+            if (pass == 1 && found) {
+                double dx = (double)(x - x0) / R, dy = (double)(y - y0) / R;
+                for (int i = span[c].first; i < span[c].first + span[c].count; i++) {
+                    m->uv[2 * (size_t)i] += dx;
+                    m->uv[2 * (size_t)i + 1] += dy;
+                }
+                span_bounds(m, &span[c]);
+                span[c].moved = 1;
+                unwrap_add_repair(r, c, "still overlapped a neighbour after shrinking; moved by (%.4f, %.4f) to free space "
+                                  "in the atlas", dx, dy);
+            } else if (pass == 1) {
+                unwrap_add_repair(r, c, "still overlapped a neighbour after shrinking and found no free space");
+            }
+        }
+    if (occ_ok) occupancy_free(&occ);
+    free(order); free(first); free(move); free(q); free(lt);
     return s;
 }
 
@@ -507,6 +672,7 @@ static void pull_charts_inside(struct neuv_unwrap_result *r, chart_span *span)
             m->uv[2 * i + 1] += d[1];
         }
         span_bounds(m, sp);
+        sp->moved = 1;
         unwrap_add_repair(r, c, "reached past [0,1]^2; moved inside by (%.4f, %.4f)", d[0], d[1]);
     }
 }
@@ -514,7 +680,7 @@ static void pull_charts_inside(struct neuv_unwrap_result *r, chart_span *span)
 /* Moves the atlas into [0,1]^2 by one uniform scale and translation when a
  * chart crossed the border (network UVs near a chart's border may reach a
  * little past the source's). */
-static void fit_unit_square(struct neuv_unwrap_result *r)
+static void fit_unit_square(struct neuv_unwrap_result *r, chart_span *span)
 {
     neuv_mesh *m = r->mesh;
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
@@ -529,6 +695,7 @@ static void fit_unit_square(struct neuv_unwrap_result *r)
         m->uv[2 * i] = fmin(1, fmax(0, sc * m->uv[2 * i] + ox));
         m->uv[2 * i + 1] = fmin(1, fmax(0, sc * m->uv[2 * i + 1] + oy));
     }
+    for (int c = 0; c < r->n_charts; c++) span[c].moved = 1;
     unwrap_add_repair(r, -1, "atlas reached past [0,1]^2 (box %.4f..%.4f, %.4f..%.4f); scaled by %.4f and centred",
                       lo[0], hi[0], lo[1], hi[1], sc);
 }
@@ -592,10 +759,14 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     neuv_progress("patches", 0, "charts from the model's source surface");
     int *label = malloc(sizeof(int) * (size_t)m->nf);
     int *src_face = malloc(sizeof(int) * (size_t)m->nf);
+    int *vertex_chart = malloc(sizeof(int) * (size_t)m->nv);
     r->face_chart = malloc(sizeof(int) * (size_t)m->nf);
-    if (!label || !src_face || !r->face_chart) { free(label); free(src_face); return neuv_fail_nomem("charts"); }
+    if (!label || !src_face || !vertex_chart || !r->face_chart) {
+        free(label); free(src_face); free(vertex_chart);
+        return neuv_fail_nomem("charts");
+    }
     double dist = 0;
-    s = transfer_charts(m, md, label, src_face, &dist);
+    s = transfer_charts(m, md, label, src_face, vertex_chart, &dist);
     r->model.surface_distance = md->norm[3] > 0 ? dist / md->norm[3] : 0;
     face_graph g;
     if (s == NEUV_OK) s = face_graph_build(m, &g);
@@ -624,17 +795,24 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     double t_check = now_seconds();
     if (s == NEUV_OK && o->check_inference) s = check_inference(r, md, src_face, o->use_cache);
     free(src_face);
-    if (s) { free(model_chart); return s; }
+    if (s) { free(model_chart); free(vertex_chart); return s; }
     t_infer += now_seconds() - t_check; /* the inference time leaves the diagnostic out */
 
-    /* UVs of every chart, checked; folded ones re-flattened. */
+    /* UVs of every chart in the source's atlas frame, checked; folded ones repaired. */
     t = now_seconds();
     int cap = r->n_charts + 16;
     chart_piece *pieces = calloc((size_t)cap, sizeof *pieces);
     int *repaired = calloc((size_t)cap, sizeof(int));
     int *mc_grown = realloc(model_chart, sizeof(int) * (size_t)cap);
+    double **anchor = calloc((size_t)cap, sizeof *anchor);
     if (mc_grown) model_chart = mc_grown;
-    if (!pieces || !repaired || !mc_grown) { free(pieces); free(repaired); free(model_chart); return neuv_fail_nomem("charts"); }
+    if (!pieces || !repaired || !mc_grown || !anchor) {
+        free(pieces); free(repaired); free(model_chart); free(anchor); free(vertex_chart);
+        return neuv_fail_nomem("charts");
+    }
+    /* The source's refinement is carried over (its difference to the networks'
+     * map, interpolated) unless the options ask to refine on this mesh. */
+    int carry_refinement = md->refine > 0 && !o->refine_on_mesh;
     int splits = 0;
     for (int c = 0; c < r->n_charts && s == NEUV_OK; c++) {
         if (r->n_charts >= cap) { /* charts added by splits */
@@ -645,21 +823,50 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             if (nr) { memset(nr + cap, 0, sizeof(int) * (size_t)(nc - cap)); repaired = nr; }
             int *nm = realloc(model_chart, sizeof(int) * (size_t)nc);
             if (nm) model_chart = nm;
-            if (!np || !nr || !nm) { s = neuv_fail_nomem("charts"); break; }
+            double **na = realloc(anchor, sizeof *na * (size_t)nc);
+            if (na) { memset(na + cap, 0, sizeof *na * (size_t)(nc - cap)); anchor = na; }
+            if (!np || !nr || !nm || !na) { s = neuv_fail_nomem("charts"); break; }
             cap = nc;
         }
         chart_piece *p = &pieces[c];
+        unwrap_piece_clear(p); /* a chart split below is built again */
+        free(anchor[c]);
+        anchor[c] = NULL;
         if ((s = unwrap_piece_build(m, r->face_chart, c, p))) break;
         neuv_progress("param", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
         int mc = model_chart[c], net = md->chart_net[mc], n = p->sub->nv, relaxed = 0;
         double *target = malloc(sizeof(double) * 2 * (size_t)n), *scratch = malloc(sizeof(double) * 2 * (size_t)n);
-        if (!target || !scratch) { free(target); free(scratch); s = neuv_fail_nomem("chart UVs"); break; }
-        if (net >= 0) {
-            s = param_net_apply(md->param, net, p->sub->pos, n, p->uv);
+        double *ext = malloc(sizeof(double) * 2 * (size_t)n), *delta = malloc(sizeof(double) * 2 * (size_t)n);
+        double *closest = malloc(sizeof(double) * 3 * (size_t)n);
+        anchor[c] = malloc(sizeof(double) * 2 * (size_t)n);
+        if (!target || !scratch || !ext || !delta || !closest || !anchor[c]) {
+            free(target); free(scratch); free(ext); free(delta); free(closest);
+            s = neuv_fail_nomem("chart UVs");
+            break;
+        }
+        s = source_chart_uvs(md, mc, p, ext, anchor[c], net >= 0 && carry_refinement ? delta : NULL, closest);
+        if (s == NEUV_OK && net >= 0) {
+            /* The networks learnt the chart, not what lies past its seam: a
+             * vertex there takes their map at its closest point of the chart,
+             * continued by the source atlas's linear extension (ext - anchor). */
+            for (int v = 0; v < n; v++)
+                if (vertex_chart[p->vmap[v]] == mc) memcpy(closest + 3 * (size_t)v, p->sub->pos + 3 * (size_t)v, sizeof(double) * 3);
+            double *at = p->uv;
+            s = param_net_apply(md->param, net, closest, n, at);
+            for (int v = 0; s == NEUV_OK && v < n; v++) {
+                if (vertex_chart[p->vmap[v]] == mc) continue;
+                /* the extension, in the networks' own frame (before mirroring and placing) */
+                double e[2] = {ext[2 * v] - anchor[c][2 * v], ext[2 * v + 1] - anchor[c][2 * v + 1]};
+                const atlas_chart_transform *xf = &md->xf[mc];
+                double cs = cos(xf->angle), sn = sin(xf->angle);
+                double lx = (cs * e[0] + sn * e[1]) / xf->scale, ly = (-sn * e[0] + cs * e[1]) / xf->scale;
+                at[2 * v] += md->chart_mirrored[mc] ? -lx : lx;
+                at[2 * v + 1] += ly;
+            }
             if (md->chart_mirrored[mc]) /* as the source's check did before packing */
                 for (int v = 0; v < n; v++) p->uv[2 * v] = -p->uv[2 * v];
             if (s == NEUV_OK) p->net_qce = chart_qce_mean(p->sub, p->uv, NULL);
-            if (s == NEUV_OK && refine > 0) { /* as the source's atlas was refined, where the map is usable */
+            if (s == NEUV_OK && refine > 0 && !carry_refinement) { /* refined on this mesh, where usable */
                 chart_uv_check chk0;
                 int ok0 = uv_usable(p, p->uv, scratch, &chk0);
                 if (ok0 < 0) s = neuv_fail_nomem("chart check");
@@ -671,10 +878,24 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
                     r->refine_stopped += rr.charts_stopped;
                 }
             }
-        } else {
-            s = transfer_chart_uvs(md, mc, p);
+            if (s == NEUV_OK) transform_uvs(p->uv, n, &md->xf[mc]);
+            if (s == NEUV_OK && carry_refinement)
+                for (int i = 0; i < 2 * n; i++) p->uv[i] += delta[i];
+        } else if (s == NEUV_OK) {
+            memcpy(p->uv, ext, sizeof(double) * 2 * (size_t)n);
         }
-        if (s) { free(target); free(scratch); break; }
+        free(delta); free(closest);
+        int baseline = 0, from_source = 0;
+        if (s == NEUV_OK && o->lscm_baseline) { /* LSCM here, placed where the model's map is */
+            memcpy(target, p->uv, sizeof(double) * 2 * (size_t)n);
+            neuv_status ls = lscm(p->sub, p->uv);
+            chart_uv_check chk0;
+            int ok0 = ls == NEUV_OK ? chart_uv_check_run(p->sub, p->uv, &chk0) : 0;
+            if (ls == NEUV_ERR_NOMEM || ok0 < 0) s = neuv_fail_nomem("LSCM baseline");
+            else if (ok0) { align_similarity(p->uv, target, n); baseline = 1; }
+            else memcpy(p->uv, target, sizeof(double) * 2 * (size_t)n);
+        }
+        if (s) { free(target); free(scratch); free(ext); break; }
         memcpy(target, p->uv, sizeof(double) * 2 * (size_t)n);
         chart_uv_check chk;
         int ok = uv_usable(p, p->uv, scratch, &chk);
@@ -683,9 +904,34 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             snprintf(why, sizeof why, "%d flipped, %d degenerate faces, %d boundary crossings%s", chk.flipped,
                      chk.degenerate, chk.boundary_crossings, chk.mirrored ? ", reversed orientation" : "");
             const char *how = "LSCM";
+            /* Local repairs first, each relaxed if it still folds: the map as
+             * it is; its corners past the seam pulled onto the source island
+             * (a zigzag border extended past the seam can cross itself); then
+             * for a network chart the source atlas (the networks' map at the
+             * source's vertices, linear between them: injective on the source),
+             * as it is and pulled. */
+            int pulled = 0;
             ok = relax_folds(p, scratch);
-            relaxed = ok > 0;
-            if (ok > 0) {
+            for (int attempt = 1; ok == 0 && attempt < 4; attempt++) {
+                if (attempt >= 2 && (net < 0 || baseline)) break;
+                memcpy(p->uv, attempt == 1 ? target : ext, sizeof(double) * 2 * (size_t)n);
+                if (attempt != 2)
+                    for (int v = 0; v < n; v++)
+                        if (vertex_chart[p->vmap[v]] != mc) memcpy(p->uv + 2 * v, anchor[c] + 2 * v, sizeof(double) * 2);
+                chart_uv_check chk1;
+                ok = uv_usable(p, p->uv, scratch, &chk1);
+                if (ok == 0) ok = relax_folds(p, scratch);
+                if (ok > 0) { pulled = attempt != 2; from_source = attempt >= 2; }
+            }
+            if (ok == 0) memcpy(p->uv, target, sizeof(double) * 2 * (size_t)n);
+            relaxed = ok > 0 && !from_source;
+            if (from_source) {
+                unwrap_add_repair(r, c, "network map folded on this mesh (%s); the source atlas taken at the closest "
+                                  "point instead%s", why, pulled ? ", corners past the seam pulled onto its island" : "");
+            } else if (ok > 0 && pulled) {
+                unwrap_add_repair(r, c, "%s map folded on this mesh (%s); corners past the seam pulled onto the source "
+                                  "island", net >= 0 ? "network" : "transferred", why);
+            } else if (ok > 0) {
                 unwrap_add_repair(r, c, "%s map folded on this mesh (%s); folded faces relaxed locally",
                                   net >= 0 ? "network" : "transferred", why);
             } else if (ok == 0 && (ok = reflatten(p, target, scratch, &how)) > 0) {
@@ -709,20 +955,22 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
                                       why, r->n_charts - before + 1);
                     c--;
                 }
-                free(target); free(scratch);
+                free(target); free(scratch); free(ext);
                 continue;
             }
         }
+        free(ext);
         if (ok < 0) s = neuv_fail_nomem("chart check");
-        else if (net >= 0) transform_uvs(p->uv, n, &md->xf[mc]);
-        if (net < 0) p->source = CHART_SOURCE_TRANSFERRED;
+        if (baseline && !relaxed && !repaired[c]) p->source = CHART_SOURCE_LSCM;
+        else if (net < 0 || from_source) p->source = CHART_SOURCE_TRANSFERRED;
         else if (repaired[c]) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
-        else p->source = refine > 0 || relaxed ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
+        else p->source = md->refine > 0 || relaxed ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
         if (s == NEUV_OK && chart_source_is_network(p->source)) s = unwrap_piece_lscm_qce(p);
-        if (net >= 0 && !repaired[c]) r->model.network_charts++;
-        if (net < 0) r->model.transferred_charts++;
+        if (net >= 0 && !repaired[c] && !baseline && !from_source) r->model.network_charts++;
+        if (net < 0 || from_source) r->model.transferred_charts++;
         free(target); free(scratch);
     }
+    r->model.refinement_carried = carry_refinement;
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     chart_span *span = s == NEUV_OK ? calloc((size_t)r->n_charts, sizeof *span) : NULL;
@@ -733,35 +981,34 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         span[c].repaired = repaired[c];
         base += pieces[c].sub->nv;
     }
-    for (int c = 0; c < cap; c++) unwrap_piece_clear(&pieces[c]);
-    free(pieces);
     free(repaired);
     r->neural_charts = r->model.network_charts;
     r->seconds[STAGE_PARAM] = now_seconds() - t;
 
-    /* The whole atlas: no chart on another, inside the unit square. */
+    /* The whole atlas: no chart on another, inside the unit square, each
+     * chart where the source put it. */
     t = now_seconds();
     r->transforms = calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *r->transforms);
     if (s == NEUV_OK && !r->transforms) s = neuv_fail_nomem("chart transforms");
     for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->transforms[c] = md->xf[model_chart[c]];
+    if (s == NEUV_OK) s = pull_past_borders(r, span, pieces, anchor, model_chart, vertex_chart);
     free(model_chart);
+    for (int c = 0; c < cap; c++) { unwrap_piece_clear(&pieces[c]); free(anchor[c]); }
+    free(pieces);
+    free(anchor);
+    free(vertex_chart);
     if (s == NEUV_OK) pull_charts_inside(r, span);
     if (s == NEUV_OK) s = resolve_overlaps(r, span);
+    if (s == NEUV_OK) fit_unit_square(r, span);
+    if (s == NEUV_OK) s = place_in_free_space(r, span);
+    for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->model.moved_charts += span[c].moved;
     free(span);
-    if (s == NEUV_OK) fit_unit_square(r);
-    if (s == NEUV_OK) { /* last resort for the no-overlap guarantee: a fresh packing */
+    if (s == NEUV_OK) {
         uv_coverage cov;
         s = uv_coverage_count(m->uv, m->nf, m->tri_uv, NULL, OVERLAP_RESOLUTION, &cov);
-        if (s == NEUV_OK && cov.overlapped > 0) {
-            atlas_pack_options pk;
-            atlas_pack_options_default(&pk);
-            pk.resolution = r->opts.resolution;
-            pk.padding = r->opts.padding;
-            pk.keep_scale = 1;
-            s = atlas_pack(m, r->face_chart, r->n_charts, &pk, r->transforms, &r->pack);
-            r->model.repacked = 1;
-            unwrap_add_repair(r, -1, "charts still overlapped after shrinking; atlas repacked (layout differs from the model's)");
-        }
+        if (s == NEUV_OK && cov.overlapped > 0)
+            unwrap_add_repair(r, -1, "%lld overlapped pixel centres remain (at %d px) after the charts were shrunk",
+                              cov.overlapped, OVERLAP_RESOLUTION);
     }
     r->seconds[STAGE_REPAIR] = now_seconds() - t;
     r->model.inference_seconds = now_seconds() - t_infer;
@@ -790,7 +1037,7 @@ neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *md, const un
 {
     *out = NULL;
     if (!mesh || mesh->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
-    unwrap_apply_options def = {0, 1, 0};
+    unwrap_apply_options def = {0, 1, 0, 0, 0};
     if (!o) o = &def;
     struct neuv_unwrap_result *r = calloc(1, sizeof *r);
     if (!r) return neuv_fail_nomem("the result");
@@ -837,7 +1084,7 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
     s = unwrap_model_from_result(tr, &md);
     double train_seconds = now_seconds() - t;
     if (s == NEUV_OK) {
-        unwrap_apply_options ao = {opts ? opts->threads : 0, opts ? opts->use_cache : 1, 0};
+        unwrap_apply_options ao = {opts ? opts->threads : 0, opts ? opts->use_cache : 1, 0, 1, 0};
         s = unwrap_apply(mesh, md, &ao, out);
     }
     if (s == NEUV_OK) {

@@ -11,19 +11,35 @@
  * label-to-chart cutting and splitting to come out the same (measured in
  * bench/RESULTS.md; --check-inference reports PatchNet's agreement).
  *
- * UVs: a chart the source mapped with MLP_f is evaluated by MLP_f at the new
- * vertices (param_net_apply); a chart with a classic map (lscm/harmonic
- * models, and neural charts the source repaired) takes the source's UVs by
- * closest point on that chart (barycentric). The stored packing similarity
- * of each chart places it in the atlas, so the layout is the source's.
+ * UVs, in the source's atlas frame (each chart placed by its stored packing
+ * similarity, so the layout is the source's and a texture painted on the
+ * source stays valid):
+ * - a chart the source mapped with MLP_f is evaluated by MLP_f at the new
+ *   vertices (param_net_apply); a vertex past the source chart's seam (its
+ *   closest source point lies in another chart: a triangulation that shares
+ *   no edge with the source cannot follow the seam) takes MLP_f at its
+ *   closest point of the chart, continued by the source atlas's linear
+ *   extension there, since the networks never learnt what lies past their
+ *   chart. When the source refined the networks' map (--refine with
+ *   --save-model), the difference the refinement made is carried over,
+ *   interpolated at the closest point of the chart, unless the options ask
+ *   to refine on this mesh (training on a simplified copy does);
+ * - a chart with a classic map (lscm/harmonic models, and neural charts the
+ *   source repaired) takes the source's UVs at the closest point of that
+ *   chart, the face's affine map extended past its border.
  *
  * Guarantee: every chart passes chart_uv_check (positive areas, simple
- * boundary: injective); a folded chart is re-flattened by LSCM (harmonic if
- * LSCM folds too, split if both do), aligned to the network's UVs by the
- * least-squares similarity so it lands where the layout expects it. Then the
- * whole atlas is rasterized (uv_overlap.h); charts that overlap a neighbour
- * are shrunk about their centroid until none do, and the atlas is fitted
- * into [0,1]^2 if a chart crossed its border. Every repair is reported. */
+ * boundary: injective); a folded chart is first relaxed locally (the folded
+ * faces' inner vertices), else re-flattened by LSCM anchored to the map
+ * (harmonic if LSCM folds too, split if both do). Then the whole atlas is
+ * rasterized (uv_overlap.h). Corners past a seam reach into the packing's
+ * gutter and, on a coarse mesh, onto the next island: in a chart that
+ * overlaps another or leaves [0,1]^2 they are pulled toward their chart's
+ * island (to half the gutter, then onto the island's border), relaxed if
+ * that folds. Only what this cannot mend moves a chart (shrunk about its
+ * centroid, moved inside the square), and the report lists each chart
+ * moved and by how much; the atlas is never packed afresh. Every repair
+ * is reported. */
 #ifndef NEUV_UNWRAP_UNWRAP_APPLY_H
 #define NEUV_UNWRAP_UNWRAP_APPLY_H
 
@@ -34,6 +50,10 @@ typedef struct unwrap_apply_options {
     int threads;          /* > 0: thread count */
     int use_cache;        /* operators cache (only --check-inference computes operators) */
     int check_inference;  /* 1: also run PatchNet on the mesh and report its label agreement */
+    int refine_on_mesh;   /* 1: refine the networks' map on this mesh (training on a copy);
+                           * 0: carry the source's refinement over, so the atlas is the source's */
+    int lscm_baseline;    /* 1: a baseline, not the model's map: each chart flattened by LSCM on this
+                           * mesh and placed by the least-squares similarity onto the model's map */
 } unwrap_apply_options;
 
 /* Inputs:  mesh  any triangulation of the model's source surface (cleaned on a copy)

@@ -72,8 +72,10 @@ struct neuv_unwrap_result {
         int transferred_charts;   /* charts whose UVs came from the source surface by closest point */
         int empty_charts;         /* source charts that got no face on this mesh */
         int merged_fragments;     /* pieces of a transferred chart merged into a neighbour */
-        int shrunk_charts;
-        int repacked;             /* 1: overlaps survived the shrinking and the atlas was packed afresh */
+        int shrunk_charts;        /* charts shrunk about their centroid to end an overlap */
+        int moved_charts;         /* charts not where the source atlas put them (shrunk or moved) */
+        int pulled_vertices;      /* corners past a source seam pulled toward their chart's island */
+        int refinement_carried;   /* 1: the source's refinement of the networks' map was carried over */
         double surface_distance;  /* largest face-centroid distance to the source surface / its bbox diagonal */
         double inference_seconds; /* from the cleaned mesh to the packed atlas (no metrics) */
         double label_agreement;   /* -1, or PatchNet inference vs stored labels (--check-inference) */

@@ -151,8 +151,13 @@ static void write_surface_model(json_writer *w, const struct neuv_unwrap_result 
     json_key(w, "transferred_charts"); json_int(w, r->model.transferred_charts);
     json_key(w, "empty_source_charts"); json_int(w, r->model.empty_charts);
     json_key(w, "merged_fragments"); json_int(w, r->model.merged_fragments);
+    json_key(w, "map_from");
+    json_string(w, r->model.refinement_carried
+                       ? "the networks' map at the new vertices plus the source's refinement carried over"
+                       : "the networks' map at the new vertices");
+    json_key(w, "pulled_vertices"); json_int(w, r->model.pulled_vertices);
     json_key(w, "shrunk_charts"); json_int(w, r->model.shrunk_charts);
-    json_key(w, "repacked"); json_bool(w, r->model.repacked);
+    json_key(w, "moved_charts"); json_int(w, r->model.moved_charts);
     json_key(w, "surface_distance"); json_number(w, r->model.surface_distance);
     json_key(w, "inference_seconds"); json_number(w, r->model.inference_seconds);
     json_key(w, "patchnet_label_agreement");
