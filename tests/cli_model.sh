@@ -3,11 +3,12 @@
 # apply the model to its jittered subdivision and to a 50% simplification,
 # check the guarantees and the UV consistency with `neuv compare`; a damaged
 # model exits 2 with one line.
-# The remeshes are made from the UNWRAPPED mesh so that they keep its seams
+# Two kinds of targets: remeshes of the UNWRAPPED mesh that keep its seams
 # (jitter never moves a seam vertex, the simplifier treats UV seams as
-# attribute seams): `neuv compare` charges every corner whose vertex lies in
-# another chart of A, so a remesh whose edges cut across A's seams cannot get
-# a small mean UV distance whatever the model does.
+# attribute seams), and independent isotropic remeshes of the input
+# (`neuv remesh --faces`) that share no edge with the source, so faces cross
+# its seams; `neuv compare` measures their corners past a seam against the
+# chart's map extended (src/compare/uv_compare.h).
 set -u
 NEUV="$1"
 TMP="${NEUV_TEST_TMP:-/tmp}/cli_model"
@@ -65,6 +66,52 @@ assert p["network_area_fraction"] > 0 and p["lscm_qce_mean_same_charts"] is not 
 assert abs(sum(s["area_fraction"] for s in p["sources"].values()) - 1) < 1e-9, p
 PYEOF
 
+# Independent remeshes at twice the faces, plain and jittered (issue 15's bars: mean UV distance at most
+# 0.003 of the atlas, p95 at most 0.01, 99% chart agreement, no flip, overlap or moved chart; measured
+# mean 2.3e-4 and 2.1e-4, p95 1.0e-3 and 9.0e-4).
+iso_check() { # TARGET_UV REPORT COMPARE_JSON label
+  "$PY" - "$2" "$3" <<'PYEOF' && ok || bad "$4: the source's atlas not kept on an independent remesh"
+import json, sys
+r = json.load(open(sys.argv[1])); c = json.load(open(sys.argv[2]))
+assert c["uv_distance"]["mean"] <= 0.003 and c["uv_distance"]["p95"] <= 0.01, c
+assert c["chart_agreement"] >= 0.99 and c["b_flipped"] == 0 and c["b_overlap_fraction"] == 0, c
+assert c["across_seam"] > 0.01, c  # the remesh really crosses the seams
+assert r["model"]["moved_charts"] == 0 and "moved" not in json.dumps(r["repairs"]), r["repairs"]
+assert r["model"]["network_charts"] >= 1, r["model"]
+PYEOF
+}
+FACES=$(grep -c '^f ' "$IN")
+"$NEUV" remesh "$IN" --faces $((2 * FACES)) -o "$TMP/iso.obj" --quiet && ok || bad "remesh --faces failed"
+"$NEUV" remesh "$TMP/iso.obj" --jitter -o "$TMP/isoj.obj" --quiet && ok || bad "remesh --jitter failed"
+for t in iso isoj; do
+  "$NEUV" unwrap "$TMP/$t.obj" --model "$TMP/m.neuv" -o "$TMP/$t-uv.obj" --report "$TMP/$t.json" --threads 1 --quiet \
+    && ok || bad "unwrap --model ($t) failed"
+  "$NEUV" compare "$TMP/src.obj" "$TMP/$t-uv.obj" --json > "$TMP/$t-cmp.json" && ok || bad "compare ($t) failed"
+  iso_check "$TMP/$t-uv.obj" "$TMP/$t.json" "$TMP/$t-cmp.json" "$t"
+done
+
+# The baseline a classic tool could give with the same charts (LSCM on this mesh, placed onto the model's
+# map): every chart is LSCM's and it lands much farther from the source's atlas (measured 1.6e-2, 70x).
+"$NEUV" unwrap "$TMP/iso.obj" --model "$TMP/m.neuv" --lscm-baseline -o "$TMP/base-uv.obj" --report "$TMP/base.json" \
+  --threads 1 --quiet && ok || bad "unwrap --lscm-baseline failed"
+"$NEUV" compare "$TMP/src.obj" "$TMP/base-uv.obj" --json > "$TMP/base-cmp.json" && ok || bad "compare (baseline) failed"
+"$PY" - "$TMP/base.json" "$TMP/base-cmp.json" "$TMP/iso-cmp.json" <<'PYEOF' && ok || bad "LSCM baseline"
+import json, sys
+r = json.load(open(sys.argv[1])); b = json.load(open(sys.argv[2])); m = json.load(open(sys.argv[3]))
+assert set(c["source"] for c in r["chart_list"]) <= {"lscm", "transferred", "lscm_after_fold"}, r["chart_list"]
+assert r["model"]["network_charts"] == 0, r["model"]
+assert b["uv_distance"]["mean"] > 5 * m["uv_distance"]["mean"], (b["uv_distance"], m["uv_distance"])
+PYEOF
+
+# A model whose source refined the networks' map carries the refinement over (measured mean 1.8e-4).
+"$NEUV" unwrap "$IN" -o "$TMP/srcr.obj" --save-model "$TMP/mr.neuv" --refine 200 --threads 1 --quiet \
+  && ok || bad "unwrap --save-model --refine failed"
+"$NEUV" unwrap "$TMP/iso.obj" --model "$TMP/mr.neuv" -o "$TMP/isor-uv.obj" --report "$TMP/isor.json" --threads 1 --quiet \
+  && ok || bad "unwrap --model (refined model) failed"
+"$NEUV" compare "$TMP/srcr.obj" "$TMP/isor-uv.obj" --json > "$TMP/isor-cmp.json" && ok || bad "compare (refined) failed"
+iso_check "$TMP/isor-uv.obj" "$TMP/isor.json" "$TMP/isor-cmp.json" "refined model"
+grep -q "refinement carried over" "$TMP/isor.json" && ok || bad "the report does not say the refinement was carried over"
+
 # Damaged models: exit 2, one line naming the file.
 expect_2() {
   local label="$1"; shift
@@ -84,6 +131,7 @@ expect_2 "missing model" "$NEUV" unwrap "$IN" --model "$TMP/none.neuv" -o "$TMP/
 expect_2 "finetune" "$NEUV" unwrap "$IN" --model "$TMP/m.neuv" --finetune 5 -o "$TMP/x.obj"
 expect_2 "method with model" "$NEUV" unwrap "$IN" --model "$TMP/m.neuv" --method lscm -o "$TMP/x.obj"
 expect_2 "refine with model" "$NEUV" unwrap "$IN" --model "$TMP/m.neuv" --refine 100 -o "$TMP/x.obj"
+expect_2 "lscm baseline without model" "$NEUV" unwrap "$IN" --lscm-baseline -o "$TMP/x.obj"
 [ ! -e "$TMP/x.obj" ] && ok || bad "a failed unwrap left $TMP/x.obj"
 
 echo "cli_model: $pass passed, $fail failed"
