@@ -64,6 +64,17 @@ int cmd_compare(int argc, char **argv)
         json_key(&w, "faces_b"); json_int(&w, r.faces_b);
         json_key(&w, "vertices_compared"); json_int(&w, r.vertices_compared);
         json_key(&w, "max_surface_distance"); json_number(&w, r.max_surface_distance);
+        json_key(&w, "worst_charts");
+        json_begin_array(&w);
+        for (int i = 0; i < UV_COMPARE_WORST && r.worst_chart[i] >= 0; i++) {
+            json_begin_object(&w);
+            json_key(&w, "b_chart"); json_int(&w, r.worst_chart[i]);
+            json_key(&w, "a_chart"); json_int(&w, r.worst_match[i]);
+            json_key(&w, "corners"); json_int(&w, r.worst_corners[i]);
+            json_key(&w, "uv_mean"); json_number(&w, r.worst_mean[i]);
+            json_end_object(&w);
+        }
+        json_end_array(&w);
         json_key(&w, "b_flipped"); json_int(&w, mb.flipped);
         json_key(&w, "b_overlap_fraction"); json_number(&w, mb.overlap_fraction);
         json_key(&w, "b_qce_mean"); json_number(&w, mb.qce_mean);

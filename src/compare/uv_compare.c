@@ -218,6 +218,38 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     for (int w = 0; w < nw; w++) across += isinf(dist[w]) != 0;
     if (across && (st = across_seam_distances(a, chart_a, nca, nw, wchart, pts, b->uv, wu, dist))) goto done;
     for (int w = 0; w < nw; w++) res->max_surface_distance = fmax(res->max_surface_distance, sqrt(d2[w]));
+    /* Per B chart: which parts of the map are off. Each corner counts once,
+     * for the chart of the first face using it (wv is not needed any more
+     * and marks the corners counted). */
+    {
+        double *sum = calloc((size_t)ncbch, sizeof(double));
+        int *cnt = calloc((size_t)ncbch, sizeof(int));
+        if (!sum || !cnt) { free(sum); free(cnt); goto nomem; }
+        for (int f = 0; f < b->nf; f++)
+            for (int k = 0; k < 3; k++) {
+                int w = edge_map_get(&wedges, b->tri[3 * f + k], b->tri_uv[3 * f + k]);
+                if (w < 0 || wv[w] < 0) continue;
+                sum[chart_b[f]] += dist[w];
+                cnt[chart_b[f]]++;
+                wv[w] = -1; /* counted once */
+            }
+        for (int i = 0; i < UV_COMPARE_WORST; i++) { res->worst_chart[i] = res->worst_match[i] = -1; }
+        for (int c = 0; c < ncbch; c++) {
+            if (!cnt[c]) continue;
+            double mean = sum[c] / cnt[c];
+            for (int i = 0; i < UV_COMPARE_WORST; i++)
+                if (res->worst_chart[i] < 0 || mean > res->worst_mean[i]) {
+                    for (int j = UV_COMPARE_WORST - 1; j > i; j--) {
+                        res->worst_chart[j] = res->worst_chart[j - 1]; res->worst_match[j] = res->worst_match[j - 1];
+                        res->worst_corners[j] = res->worst_corners[j - 1]; res->worst_mean[j] = res->worst_mean[j - 1];
+                    }
+                    res->worst_chart[i] = c; res->worst_match[i] = best_a[c];
+                    res->worst_corners[i] = cnt[c]; res->worst_mean[i] = mean;
+                    break;
+                }
+        }
+        free(sum); free(cnt);
+    }
     res->vertices_compared = nw;
     res->across_seam = (double)across / nw;
     summarize(dist, nw, &res->uv_mean, &res->uv_p95, &res->uv_max);

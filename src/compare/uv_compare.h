@@ -6,6 +6,8 @@
 
 #include "mesh/mesh.h"
 
+#define UV_COMPARE_WORST 5
+
 typedef struct uv_compare_result {
     double uv_mean, uv_p95, uv_max; /* UV distance in atlas units (UV coordinates), in the matched chart */
     double nearest_mean, nearest_p95, nearest_max; /* the same at the closest point whatever its chart */
@@ -16,6 +18,10 @@ typedef struct uv_compare_result {
     int charts_a, charts_b;
     int vertices_compared;          /* distinct (vertex, UV) corners of B */
     double max_surface_distance;    /* largest distance from a compared B vertex to A's surface */
+    int worst_chart[UV_COMPARE_WORST];   /* B charts with the largest mean UV distance (-1: none) */
+    int worst_match[UV_COMPARE_WORST];   /* the A chart each is matched to */
+    int worst_corners[UV_COMPARE_WORST]; /* its corners compared */
+    double worst_mean[UV_COMPARE_WORST]; /* their mean UV distance */
 } uv_compare_result;
 
 /* Compares B's UV map against A's.

@@ -265,6 +265,104 @@ static neuv_status source_chart_uvs(const unwrap_model *md, int mc, const chart_
     return s;
 }
 
+/* One source chart, ready for closest-point queries of its atlas UVs. */
+typedef struct source_island {
+    neuv_mesh *sub;
+    int *vmap, *fmap;
+    double *uv; /* #CV by 2: the source atlas at the chart's vertices */
+    bvh tree;
+    int ready;
+} source_island;
+
+static neuv_status source_island_open(const unwrap_model *md, int mc, source_island *is)
+{
+    memset(is, 0, sizeof *is);
+    neuv_status s = chart_submesh(md->source, md->face_chart, mc, &is->sub, &is->vmap, &is->fmap);
+    if (s) return s;
+    is->uv = malloc(sizeof(double) * 2 * (size_t)is->sub->nv);
+    if (!is->uv) return neuv_fail_nomem("UV transfer");
+    for (int f = 0; f < is->sub->nf; f++)
+        for (int k = 0; k < 3; k++)
+            memcpy(is->uv + 2 * (size_t)is->sub->tri[3 * f + k],
+                   md->source->uv + 2 * (size_t)md->source->tri_uv[3 * (size_t)is->fmap[f] + k], sizeof(double) * 2);
+    if ((s = bvh_build(&is->tree, is->sub))) return s;
+    is->ready = 1;
+    return NEUV_OK;
+}
+
+static void source_island_close(source_island *is)
+{
+    if (is->ready) bvh_free(&is->tree);
+    mesh_free(is->sub);
+    free(is->vmap); free(is->fmap); free(is->uv);
+    memset(is, 0, sizeof *is);
+}
+
+/* The source atlas of the island at point p, the closest face's affine map extended. */
+static void source_island_ext(const source_island *is, const double p[3], double uv[2])
+{
+    int f;
+    bvh_closest_point(&is->tree, p, &f, NULL, NULL);
+    const int *t = is->sub->tri + 3 * f;
+    double w[3];
+    triangle_barycentric(is->sub->pos + 3 * t[0], is->sub->pos + 3 * t[1], is->sub->pos + 3 * t[2], p, w);
+    for (int q = 0; q < 2; q++)
+        uv[q] = w[0] * is->uv[2 * t[0] + q] + w[1] * is->uv[2 * t[1] + q] + w[2] * is->uv[2 * t[2] + q];
+}
+
+static double face_ext_area2(const neuv_mesh *m, const source_island *is, int f)
+{
+    double u[3][2];
+    for (int k = 0; k < 3; k++) source_island_ext(is, m->pos + 3 * (size_t)m->tri[3 * (size_t)f + k], u[k]);
+    return (u[1][0] - u[0][0]) * (u[2][1] - u[0][1]) - (u[1][1] - u[0][1]) * (u[2][0] - u[0][0]);
+}
+
+/* Faces along a chart border that the source atlas of their chart maps
+ * flipped or flat (a closest-point border cuts a source seam where this
+ * mesh's edges cannot follow it, and a face across the seam may land
+ * backwards in its chart's map) go to a neighbouring chart whose map takes
+ * them the right way round: the border moves by a face toward where the
+ * source's seam runs. A few rounds; faces away from every border are not
+ * examined. label holds model chart ids.
+ * Returns the number of faces moved, or -1 on no memory. */
+static int settle_border_faces(const neuv_mesh *m, const unwrap_model *md, const face_graph *g, int *label,
+                               neuv_status *st)
+{
+    int nf = m->nf, moved = 0;
+    *st = NEUV_OK;
+    source_island *is = calloc((size_t)md->n_charts, sizeof *is);
+    unsigned char *border = malloc((size_t)(nf > 0 ? nf : 1));
+    if (!is || !border) { free(is); free(border); *st = neuv_fail_nomem("charts"); return -1; }
+    for (int round = 0; round < 3 && *st == NEUV_OK; round++) {
+        int changed = 0;
+        for (int f = 0; f < nf; f++) {
+            border[f] = 0;
+            for (int k = 0; k < 3; k++) {
+                int h = g->adj[3 * f + k];
+                if (h >= 0 && label[h] != label[f]) border[f] = 1;
+            }
+        }
+        for (int f = 0; f < nf && *st == NEUV_OK; f++) {
+            if (!border[f]) continue;
+            int c = label[f];
+            if (!is[c].ready && (*st = source_island_open(md, c, &is[c]))) break;
+            if (face_ext_area2(m, &is[c], f) > 0) continue;
+            for (int k = 0; k < 3; k++) {
+                int h = g->adj[3 * f + k];
+                if (h < 0 || label[h] == c) continue;
+                int d = label[h];
+                if (!is[d].ready && (*st = source_island_open(md, d, &is[d]))) break;
+                if (face_ext_area2(m, &is[d], f) > 0) { label[f] = d; changed++; break; }
+            }
+        }
+        moved += changed;
+        if (!changed) break;
+    }
+    for (int c = 0; c < md->n_charts; c++) source_island_close(&is[c]);
+    free(is); free(border);
+    return *st == NEUV_OK ? moved : -1;
+}
+
 /* 1: the UVs pass the injectivity check as they are (no mirroring needed). */
 static int uv_usable(const chart_piece *p, const double *uv, double *scratch, chart_uv_check *chk)
 {
@@ -772,9 +870,16 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     if (s == NEUV_OK) s = face_graph_build(m, &g);
     if (s == NEUV_OK) {
         int merged = merge_fragments(m, &g, label, md->n_charts);
-        face_graph_free(&g);
         if (merged < 0) s = neuv_fail_nomem("charts");
+        int settled = s == NEUV_OK ? settle_border_faces(m, md, &g, label, &s) : 0;
+        if (s == NEUV_OK && settled > 0) {
+            int again = merge_fragments(m, &g, label, md->n_charts);
+            if (again < 0) s = neuv_fail_nomem("charts");
+            else merged += again;
+        }
+        face_graph_free(&g);
         r->model.merged_fragments = merged;
+        r->model.settled_faces = settled;
     }
     /* Compact ids: source charts that got no face are dropped. */
     int *model_chart = malloc(sizeof(int) * (size_t)md->n_charts);
@@ -885,7 +990,30 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             memcpy(p->uv, ext, sizeof(double) * 2 * (size_t)n);
         }
         free(delta); free(closest);
-        int baseline = 0, from_source = 0;
+        int baseline = 0, from_source = 0, deviates = 0;
+        if (s == NEUV_OK && net >= 0 && !o->lscm_baseline) {
+            /* The networks' map at these vertices against the source atlas, which
+             * is the same map at the source's vertices (plus any refinement
+             * carried), over the chart's own vertices: farther apart on average
+             * than the packing's gutter, the networks' map varies between the
+             * source's vertices more than the atlas can absorb, and the source
+             * atlas is taken instead. */
+            double dev = 0;
+            int nin = 0;
+            for (int v = 0; v < n; v++)
+                if (vertex_chart[p->vmap[v]] == mc) {
+                    dev += hypot(p->uv[2 * v] - ext[2 * v], p->uv[2 * v + 1] - ext[2 * v + 1]);
+                    nin++;
+                }
+            dev = nin ? dev / nin : 0;
+            double gutter = (double)r->opts.padding / (r->opts.resolution > 0 ? r->opts.resolution : 1024);
+            if (dev > gutter) {
+                memcpy(p->uv, ext, sizeof(double) * 2 * (size_t)n);
+                deviates = 1;
+                unwrap_add_repair(r, c, "network map %.2g (mean) from the source atlas on this mesh, more than the "
+                                  "%.2g gutter; the source atlas taken at the closest point instead", dev, gutter);
+            }
+        }
         if (s == NEUV_OK && o->lscm_baseline) { /* LSCM here, placed where the model's map is */
             memcpy(target, p->uv, sizeof(double) * 2 * (size_t)n);
             neuv_status ls = lscm(p->sub, p->uv);
@@ -913,7 +1041,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             int pulled = 0;
             ok = relax_folds(p, scratch);
             for (int attempt = 1; ok == 0 && attempt < 4; attempt++) {
-                if (attempt >= 2 && (net < 0 || baseline)) break;
+                if (attempt >= 2 && (net < 0 || baseline || deviates)) break;
                 memcpy(p->uv, attempt == 1 ? target : ext, sizeof(double) * 2 * (size_t)n);
                 if (attempt != 2)
                     for (int v = 0; v < n; v++)
@@ -930,14 +1058,14 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
                                   "point instead%s", why, pulled ? ", corners past the seam pulled onto its island" : "");
             } else if (ok > 0 && pulled) {
                 unwrap_add_repair(r, c, "%s map folded on this mesh (%s); corners past the seam pulled onto the source "
-                                  "island", net >= 0 ? "network" : "transferred", why);
+                                  "island", net >= 0 && !deviates ? "network" : "transferred", why);
             } else if (ok > 0) {
                 unwrap_add_repair(r, c, "%s map folded on this mesh (%s); folded faces relaxed locally",
-                                  net >= 0 ? "network" : "transferred", why);
+                                  net >= 0 && !deviates ? "network" : "transferred", why);
             } else if (ok == 0 && (ok = reflatten(p, target, scratch, &how)) > 0) {
                 repaired[c] = 1;
                 unwrap_add_repair(r, c, "%s map folded on this mesh (%s); re-flattened with %s",
-                                  net >= 0 ? "network" : "transferred", why, how);
+                                  net >= 0 && !deviates ? "network" : "transferred", why, how);
             } else if (ok == 0) {
                 if (p->sub->nf < 2 || splits >= m->nf) {
                     s = neuv_fail(NEUV_ERR_INTERNAL, "chart %d cannot be flattened without folds", c);
@@ -962,12 +1090,13 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         free(ext);
         if (ok < 0) s = neuv_fail_nomem("chart check");
         if (baseline && !relaxed && !repaired[c]) p->source = CHART_SOURCE_LSCM;
-        else if (net < 0 || from_source) p->source = CHART_SOURCE_TRANSFERRED;
+        else if (repaired[c]) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
+        else if (net < 0 || from_source || deviates) p->source = CHART_SOURCE_TRANSFERRED;
         else if (repaired[c]) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
         else p->source = md->refine > 0 || relaxed ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
         if (s == NEUV_OK && chart_source_is_network(p->source)) s = unwrap_piece_lscm_qce(p);
-        if (net >= 0 && !repaired[c] && !baseline && !from_source) r->model.network_charts++;
-        if (net < 0 || from_source) r->model.transferred_charts++;
+        if (net >= 0 && !repaired[c] && !baseline && !from_source && !deviates) r->model.network_charts++;
+        if ((net < 0 || from_source || deviates) && !repaired[c]) r->model.transferred_charts++;
         free(target); free(scratch);
     }
     r->model.refinement_carried = carry_refinement;
