@@ -618,8 +618,9 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
 
 /* Shrinks charts that overlap a neighbour until the whole atlas has no
  * overlapped pixel centre (at the metric's resolution): of each
- * overlapping pair, the chart a fold repair re-flattened, else the smaller
- * one, shrinks to 0.92 of its size about its centroid, once per round. */
+ * overlapping pair, the chart already off the model's layout (re-flattened
+ * by a fold repair, or moved), else the smaller one, shrinks to 0.92 of its
+ * size about its centroid, once per round. */
 static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *span)
 {
     neuv_mesh *m = r->mesh;
@@ -636,7 +637,9 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
         for (int k = 0; k < np; k++) {
             int a = pairs[2 * k], b = pairs[2 * k + 1];
             chart_span *A = &span[a], *B = &span[b];
-            int pick = A->repaired != B->repaired ? (A->repaired ? a : b) : (span_area(A) <= span_area(B) ? a : b);
+            /* A chart already off the model's layout (re-flattened or moved) gives way; else the smaller one. */
+            int wa = A->repaired || A->moved, wb = B->repaired || B->moved;
+            int pick = wa != wb ? (wa ? a : b) : (span_area(A) <= span_area(B) ? a : b);
             if (now[a] || now[b]) continue; /* one of them shrank this round already */
             chart_span *P = &span[pick];
             double cx = 0, cy = 0;
@@ -718,12 +721,32 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
             int x0, y0;
             if (chart_footprint(m, &span[c], order, first, c, R, q, lt, &fp, &x0, &y0)) { s = neuv_fail_nomem("chart placement"); break; }
             int x = x0, y = y0, found = 1;
-            if (pass == 1) {
+            double scale = 1;
+            for (int tries = 0; pass == 1 && tries < 8; tries++) {
                 footprint_spans fs;
-                if (footprint_to_spans(&fp, &fs)) { footprint_free(&fp); s = neuv_fail_nomem("chart placement"); break; }
+                if (footprint_to_spans(&fp, &fs)) { s = neuv_fail_nomem("chart placement"); break; }
                 found = occupancy_find(&occ, &fs, R, &x, &y);
                 footprint_spans_free(&fs);
+                if (found) break;
+                /* No room at this size: 0.8 of it about its centroid, and look again. */
+                double cx = 0, cy = 0;
+                for (int i = span[c].first; i < span[c].first + span[c].count; i++) { cx += m->uv[2 * i]; cy += m->uv[2 * i + 1]; }
+                cx /= span[c].count;
+                cy /= span[c].count;
+                for (int i = span[c].first; i < span[c].first + span[c].count; i++) {
+                    m->uv[2 * i] = cx + 0.8 * (m->uv[2 * i] - cx);
+                    m->uv[2 * i + 1] = cy + 0.8 * (m->uv[2 * i + 1] - cy);
+                }
+                scale *= 0.8;
+                span_bounds(m, &span[c]);
+                footprint_free(&fp);
+                if (chart_footprint(m, &span[c], order, first, c, R, q, lt, &fp, &x0, &y0)) {
+                    s = neuv_fail_nomem("chart placement");
+                    memset(&fp, 0, sizeof fp);
+                    break;
+                }
             }
+            if (s) { footprint_free(&fp); break; }
             if (found && footprint_dilate(&fp, pad, &dil) == 0) occupancy_mark(&occ, &dil, x - pad, y - pad);
             footprint_free(&fp);
             footprint_free(&dil);
@@ -736,9 +759,10 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
                 span_bounds(m, &span[c]);
                 span[c].moved = 1;
                 unwrap_add_repair(r, c, "still overlapped a neighbour after shrinking; moved by (%.4f, %.4f) to free space "
-                                  "in the atlas", dx, dy);
+                                  "in the atlas, at %.3f of that size", dx, dy, scale);
             } else if (pass == 1) {
-                unwrap_add_repair(r, c, "still overlapped a neighbour after shrinking and found no free space");
+                unwrap_add_repair(r, c, "still overlapped a neighbour after shrinking and found no free space (down to %.3f of "
+                                  "that size)", scale);
             }
         }
     if (occ_ok) occupancy_free(&occ);
@@ -991,7 +1015,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         }
         free(delta); free(closest);
         int baseline = 0, from_source = 0, deviates = 0;
-        if (s == NEUV_OK && net >= 0 && !o->lscm_baseline) {
+        if (s == NEUV_OK && net >= 0 && !o->lscm_baseline && !o->refine_on_mesh) {
             /* The networks' map at these vertices against the source atlas, which
              * is the same map at the source's vertices (plus any refinement
              * carried), over the chart's own vertices: farther apart on average
@@ -1041,7 +1065,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             int pulled = 0;
             ok = relax_folds(p, scratch);
             for (int attempt = 1; ok == 0 && attempt < 4; attempt++) {
-                if (attempt >= 2 && (net < 0 || baseline || deviates)) break;
+                if (attempt >= 2 && (net < 0 || baseline || deviates || o->refine_on_mesh)) break;
                 memcpy(p->uv, attempt == 1 ? target : ext, sizeof(double) * 2 * (size_t)n);
                 if (attempt != 2)
                     for (int v = 0; v < n; v++)

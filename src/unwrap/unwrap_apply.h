@@ -5,7 +5,9 @@
  * Charts on the new mesh come from the stored source charts by closest
  * point (each face takes the chart of the source face nearest its
  * centroid; pieces cut off from their chart are merged into the neighbour
- * sharing the longest border), not from PatchNet inference: closest-point
+ * sharing the longest border; then border faces that their chart's source
+ * map turns over go to a neighbour whose map does not), not from PatchNet
+ * inference: closest-point
  * transfer reproduces the source charts up to the border zigzag whatever
  * the triangulation, while argmax labels of a re-run network then need the
  * label-to-chart cutting and splitting to come out the same (measured in
@@ -28,10 +30,16 @@
  *   source repaired) takes the source's UVs at the closest point of that
  *   chart, the face's affine map extended past its border.
  *
+ * A network chart whose map at the new vertices lies farther from the
+ * source atlas (the same map at the source's vertices) than the packing's
+ * gutter, on average over the chart's own vertices, takes the source atlas.
+ *
  * Guarantee: every chart passes chart_uv_check (positive areas, simple
  * boundary: injective); a folded chart is first relaxed locally (the folded
- * faces' inner vertices), else re-flattened by LSCM anchored to the map
- * (harmonic if LSCM folds too, split if both do). Then the whole atlas is
+ * faces' inner vertices), then tried with its corners past the seam pulled
+ * onto the source island, then (network charts) with the source atlas,
+ * else re-flattened by LSCM anchored to the map (harmonic if LSCM folds
+ * too, split if both do). docs/transfer.md has the whole sequence. Then the whole atlas is
  * rasterized (uv_overlap.h). Corners past a seam reach into the packing's
  * gutter and, on a coarse mesh, onto the next island: in a chart that
  * overlaps another or leaves [0,1]^2 they are pulled toward their chart's
@@ -50,7 +58,9 @@ typedef struct unwrap_apply_options {
     int threads;          /* > 0: thread count */
     int use_cache;        /* operators cache (only --check-inference computes operators) */
     int check_inference;  /* 1: also run PatchNet on the mesh and report its label agreement */
-    int refine_on_mesh;   /* 1: refine the networks' map on this mesh (training on a copy);
+    int refine_on_mesh;   /* 1: the source is a simplified copy of this mesh (--train-faces): the
+                           * networks' map is refined here, and a chart is never replaced by the
+                           * copy's atlas (quality on this mesh matters, not the copy's layout);
                            * 0: carry the source's refinement over, so the atlas is the source's */
     int lscm_baseline;    /* 1: a baseline, not the model's map: each chart flattened by LSCM on this
                            * mesh and placed by the least-squares similarity onto the model's map */
