@@ -75,7 +75,7 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
         char sources[256];
         unwrap_source_summary(r, sources, sizeof sources);
         char moved[96] = "";
-        if (r->model.moved_charts > 0)
+        if (r->model.moved_charts > 0 && !r->model.trained_on_copy) /* a copy's layout is nobody's texture */
             snprintf(moved, sizeof moved, ", %d chart%s moved from the model's layout", r->model.moved_charts,
                      r->model.moved_charts == 1 ? "" : "s");
         printf("%s: %d charts (%s)%s, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f, %.1f s -> %s\n",
