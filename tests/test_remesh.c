@@ -8,6 +8,7 @@
 #include "remesh/simplify.h"
 #include "remesh/subdivide.h"
 #include "spatial/bvh.h"
+#include "surface_distance.h"
 
 static component_topology topo(const neuv_mesh *m)
 {
@@ -17,20 +18,6 @@ static component_topology topo(const neuv_mesh *m)
     return t;
 }
 
-/* Largest distance from m's vertices to the surface of ref. */
-static double max_deviation(const neuv_mesh *ref, const neuv_mesh *m)
-{
-    bvh b;
-    if (bvh_build(&b, ref)) return INFINITY;
-    double worst = 0;
-    for (int v = 0; v < m->nv; v++) {
-        double d2;
-        bvh_closest_point(&b, m->pos + 3 * v, NULL, NULL, &d2);
-        worst = fmax(worst, sqrt(d2));
-    }
-    bvh_free(&b);
-    return worst;
-}
 
 static void test_midpoint(void)
 {

@@ -74,6 +74,30 @@ static double clamp_index(double x, double hi)
     return x < 0 ? 0 : (x > hi ? hi : x);
 }
 
+/* The raster edges of face f's UV triangle (pixel units: (uv - lo) * s),
+ * counter-clockwise, and its box (xmin, xmax, ymin, ymax). Returns 0 for a
+ * flat triangle, which covers no centre under the rule. */
+static int triangle_edges(const double *uv, const int *t, const double lo[2], double s, raster_edge e[3], double box[4])
+{
+    double x[3], y[3];
+    for (int k = 0; k < 3; k++) {
+        const double *q = uv + 2 * (size_t)t[k];
+        x[k] = (q[0] - lo[0]) * s;
+        y[k] = (q[1] - lo[1]) * s;
+    }
+    double area2 = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+    if (area2 == 0) return 0;
+    int b = area2 > 0 ? 1 : 2, c = area2 > 0 ? 2 : 1; /* counter-clockwise order 0, b, c */
+    edge_setup(&e[0], x[0], y[0], x[b], y[b]);
+    edge_setup(&e[1], x[b], y[b], x[c], y[c]);
+    edge_setup(&e[2], x[c], y[c], x[0], y[0]);
+    box[0] = fmin(x[0], fmin(x[1], x[2]));
+    box[1] = fmax(x[0], fmax(x[1], x[2]));
+    box[2] = fmin(y[0], fmin(y[1], y[2]));
+    box[3] = fmax(y[0], fmax(y[1], y[2]));
+    return 1;
+}
+
 neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
                               const unsigned char *face_mask, int resolution, uv_coverage *out)
 {
@@ -153,20 +177,10 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
             int j0 = rows[2 * f] > band ? rows[2 * f] : band;
             int j1 = rows[2 * f + 1] < band_end ? rows[2 * f + 1] : band_end;
             if (j0 > j1) continue;
-            double x[3], y[3];
-            for (int k = 0; k < 3; k++) {
-                const double *q = uv + 2 * (size_t)tri_uv[3 * (size_t)f + k];
-                x[k] = (q[0] - lo[0]) * s;
-                y[k] = (q[1] - lo[1]) * s;
-            }
-            double area2 = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
-            if (area2 == 0) continue; /* covers no centre under the rule anyway */
-            int b = area2 > 0 ? 1 : 2, c = area2 > 0 ? 2 : 1; /* counter-clockwise order 0, b, c */
             raster_edge e[3];
-            edge_setup(&e[0], x[0], y[0], x[b], y[b]);
-            edge_setup(&e[1], x[b], y[b], x[c], y[c]);
-            edge_setup(&e[2], x[c], y[c], x[0], y[0]);
-            double xmin = fmin(x[0], fmin(x[1], x[2])), xmax = fmax(x[0], fmax(x[1], x[2]));
+            double box[4];
+            if (!triangle_edges(uv, tri_uv + 3 * (size_t)f, lo, s, e, box)) continue;
+            double xmin = box[0], xmax = box[1];
             int i0 = (int)clamp_index(floor(xmin - 0.5), width - 1);
             int i1 = (int)clamp_index(ceil(xmax - 0.5), width - 1);
             for (int j = j0; j <= j1; j++) {
@@ -238,21 +252,10 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     chart_span_px *sp = malloc(sizeof *sp * cap);
     if (!sp) return neuv_fail_nomem("overlap raster");
     for (int f = 0; f < nf; f++) {
-        double x[3], y[3];
-        for (int k = 0; k < 3; k++) {
-            const double *q = uv + 2 * (size_t)tri_uv[3 * (size_t)f + k];
-            x[k] = (q[0] - lo[0]) * s;
-            y[k] = (q[1] - lo[1]) * s;
-        }
-        double area2 = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
-        if (area2 == 0) continue;
-        int b = area2 > 0 ? 1 : 2, c = area2 > 0 ? 2 : 1;
         raster_edge e[3];
-        edge_setup(&e[0], x[0], y[0], x[b], y[b]);
-        edge_setup(&e[1], x[b], y[b], x[c], y[c]);
-        edge_setup(&e[2], x[c], y[c], x[0], y[0]);
-        double ymin = fmin(y[0], fmin(y[1], y[2])), ymax = fmax(y[0], fmax(y[1], y[2]));
-        double xmin = fmin(x[0], fmin(x[1], x[2])), xmax = fmax(x[0], fmax(x[1], x[2]));
+        double box[4];
+        if (!triangle_edges(uv, tri_uv + 3 * (size_t)f, lo, s, e, box)) continue;
+        double xmin = box[0], xmax = box[1], ymin = box[2], ymax = box[3];
         int j0 = (int)clamp_index(floor(ymin - 0.5), height - 1), j1 = (int)clamp_index(ceil(ymax - 0.5), height - 1);
         int i0 = (int)clamp_index(floor(xmin - 0.5), width - 1), i1 = (int)clamp_index(ceil(xmax - 0.5), width - 1);
         for (int j = j0; j <= j1; j++) {
