@@ -201,7 +201,34 @@ static double box_dist2(const bvh_node *nd, const double p[3])
     return s;
 }
 
+/* 1 when triangle c (9 doubles) faces the same side as n (n NULL: always). */
+static int facing(const double *c, const double *n)
+{
+    if (!n) return 1;
+    double e0[3], e1[3];
+    for (int q = 0; q < 3; q++) { e0[q] = c[3 + q] - c[q]; e1[q] = c[6 + q] - c[q]; }
+    double x = e0[1] * e1[2] - e0[2] * e1[1], y = e0[2] * e1[0] - e0[0] * e1[2], z = e0[0] * e1[1] - e0[1] * e1[0];
+    return x * n[0] + y * n[1] + z * n[2] > 0;
+}
+
+static int closest_point_filtered(const bvh *b, const double point[3], const double *normal, int *face, double bary[3],
+                                  double *dist2);
+
 void bvh_closest_point(const bvh *b, const double point[3], int *face, double bary[3], double *dist2)
+{
+    closest_point_filtered(b, point, NULL, face, bary, dist2);
+}
+
+void bvh_closest_point_facing(const bvh *b, const double point[3], const double normal[3], int *face, double bary[3],
+                              double *dist2)
+{
+    if (!closest_point_filtered(b, point, normal, face, bary, dist2)) /* nothing faces that way */
+        closest_point_filtered(b, point, NULL, face, bary, dist2);
+}
+
+/* Returns 0 when no triangle passed the filter (outputs then untouched). */
+static int closest_point_filtered(const bvh *b, const double point[3], const double *normal, int *face, double bary[3],
+                                  double *dist2)
 {
     double best = INFINITY, best_bary[3] = {1, 0, 0};
     int best_j = 0;
@@ -215,6 +242,7 @@ void bvh_closest_point(const bvh *b, const double point[3], int *face, double ba
         if (nd->child < 0) {
             for (int j = nd->start; j < nd->start + nd->count; j++) {
                 const double *c = b->corner + 9 * (size_t)j;
+                if (!facing(c, normal)) continue;
                 double w[3];
                 double d = triangle_closest_point(c, c + 3, c + 6, point, w);
                 if (d < best) {
@@ -231,9 +259,11 @@ void bvh_closest_point(const bvh *b, const double point[3], int *face, double ba
         if (d1 <= best) { stack[top] = c1; sdist[top] = d1; top++; }
         if (d0 <= best) { stack[top] = c0; sdist[top] = d0; top++; }
     }
+    if (best == INFINITY && normal) return 0;
     if (face) *face = b->face[best_j];
     if (bary) { bary[0] = best_bary[0]; bary[1] = best_bary[1]; bary[2] = best_bary[2]; }
     if (dist2) *dist2 = best;
+    return 1;
 }
 
 void bvh_closest_points(const bvh *b, int n, const double *points, int *face, double *bary, double *dist2)

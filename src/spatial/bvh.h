@@ -34,6 +34,14 @@ void bvh_free(bvh *b);
  * dist2: squared distance. Any output may be NULL. */
 void bvh_closest_point(const bvh *b, const double point[3], int *face, double bary[3], double *dist2);
 
+/* The same among the faces whose normal (corner order of m->tri) has a
+ * positive dot product with `normal`: a point on one of two sheets closer
+ * together than a remesh's deviation (a lid in its opening, the two sides
+ * of a thin part) finds its own sheet. Falls back to every face when none
+ * faces that way. */
+void bvh_closest_point_facing(const bvh *b, const double point[3], const double normal[3], int *face, double bary[3],
+                              double *dist2);
+
 /* Many queries at once, in parallel over the points (OpenMP). Near the
  * surface a query costs about 2.6 us of one core on a 100k-face torus
  * (points 15 times farther cost several times more). 

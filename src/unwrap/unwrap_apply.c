@@ -50,7 +50,24 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
     double *pt = malloc(sizeof(double) * 3 * np);
     double *d2 = malloc(sizeof(double) * np);
     int *sf = malloc(sizeof(int) * np);
-    if (!pt || !d2 || !sf) { free(pt); free(d2); free(sf); bvh_free(&b); return neuv_fail_nomem("chart transfer"); }
+    double *fn = malloc(sizeof(double) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
+    double *vn = calloc(3 * (size_t)(m->nv > 0 ? m->nv : 1), sizeof(double));
+    if (!pt || !d2 || !sf || !fn || !vn) {
+        free(pt); free(d2); free(sf); free(fn); free(vn); bvh_free(&b);
+        return neuv_fail_nomem("chart transfer");
+    }
+    /* Face normals (area-weighted) and vertex normals: each point looks for
+     * the closest source face on its own side of the surface. */
+    for (int f = 0; f < m->nf; f++) {
+        const double *a = m->pos + 3 * m->tri[3 * f], *bq = m->pos + 3 * m->tri[3 * f + 1], *c = m->pos + 3 * m->tri[3 * f + 2];
+        double e0[3] = {bq[0] - a[0], bq[1] - a[1], bq[2] - a[2]}, e1[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double *n = fn + 3 * (size_t)f;
+        n[0] = e0[1] * e1[2] - e0[2] * e1[1];
+        n[1] = e0[2] * e1[0] - e0[0] * e1[2];
+        n[2] = e0[0] * e1[1] - e0[1] * e1[0];
+        for (int k = 0; k < 3; k++)
+            for (int q = 0; q < 3; q++) vn[3 * (size_t)m->tri[3 * f + k] + q] += n[q];
+    }
     static const double w[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 6, 1.0 / 6},
                                    {1.0 / 6, 2.0 / 3, 1.0 / 6}, {1.0 / 6, 1.0 / 6, 2.0 / 3}};
     for (int f = 0; f < m->nf; f++) {
@@ -60,7 +77,9 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
                 pt[3 * (4 * (size_t)f + j) + q] =
                     w[j][0] * m->pos[3 * t[0] + q] + w[j][1] * m->pos[3 * t[1] + q] + w[j][2] * m->pos[3 * t[2] + q];
     }
-    bvh_closest_points(&b, (int)np, pt, sf, NULL, d2);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int i = 0; i < 4 * m->nf; i++)
+        bvh_closest_point_facing(&b, pt + 3 * (size_t)i, fn + 3 * (size_t)(i / 4), sf + i, NULL, d2 + i);
     double worst = 0;
     for (int f = 0; f < m->nf; f++) {
         int lab[4], best = md->face_chart[sf[4 * (size_t)f]], best_n = 0;
@@ -80,9 +99,10 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
         if (d2[4 * (size_t)f] > worst) worst = d2[4 * (size_t)f];
     }
     *max_dist = sqrt(worst);
-    bvh_closest_points(&b, m->nv, m->pos, sf, NULL, NULL);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int v = 0; v < m->nv; v++) bvh_closest_point_facing(&b, m->pos + 3 * (size_t)v, vn + 3 * (size_t)v, sf + v, NULL, NULL);
     for (int v = 0; v < m->nv; v++) vertex_chart[v] = md->face_chart[sf[v]];
-    free(pt); free(d2); free(sf);
+    free(pt); free(d2); free(sf); free(fn); free(vn);
     bvh_free(&b);
     return NEUV_OK;
 }
