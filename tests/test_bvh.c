@@ -1,6 +1,8 @@
 /* BVH closest points against brute force over every triangle, on an
  * icosphere and a torus; points on the surface have distance 0 and their
  * own barycentric coordinates. */
+#include <string.h>
+
 #include "check.h"
 #include "core/rng.h"
 #include "mesh/shapes.h"
@@ -110,9 +112,41 @@ static void test_triangle_regions(void)
     CHECK_NEAR(triangle_closest_point(a, b, d, p5, w), 1, 1e-15);
 }
 
+/* Two sheets of a unit square 0.01 apart facing away from each other (the
+ * lower one turned over): a point just above the lower sheet whose normal
+ * looks down finds the lower sheet, whatever the upper one's distance; a
+ * normal no face shares falls back to the plain closest point. */
+static void test_facing(void)
+{
+    neuv_mesh *m = mesh_create(8, 4, 0);
+    static const double p[8][3] = {{0, 0, 0.01}, {1, 0, 0.01}, {1, 1, 0.01}, {0, 1, 0.01},
+                                   {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    static const int t[4][3] = {{0, 1, 2}, {0, 2, 3}, {4, 6, 5}, {4, 7, 6}}; /* up, up, down, down */
+    memcpy(m->pos, p, sizeof p);
+    memcpy(m->tri, t, sizeof t);
+    bvh b;
+    CHECK_INT(bvh_build(&b, m), NEUV_OK);
+    double q[3] = {0.3, 0.6, 0.008}, up[3] = {0, 0, 1}, down[3] = {0, 0, -1}, side[3] = {1, 0, 0}, d2;
+    int f = -1;
+    bvh_closest_point(&b, q, &f, NULL, &d2);
+    CHECK(f == 0 || f == 1);
+    CHECK_NEAR(d2, 0.002 * 0.002, 1e-15);
+    bvh_closest_point_facing(&b, q, down, &f, NULL, &d2);
+    CHECK(f == 2 || f == 3);
+    CHECK_NEAR(d2, 0.008 * 0.008, 1e-15);
+    bvh_closest_point_facing(&b, q, up, &f, NULL, &d2);
+    CHECK(f == 0 || f == 1);
+    bvh_closest_point_facing(&b, q, side, &f, NULL, &d2);
+    CHECK(f == 0 || f == 1);
+    CHECK_NEAR(d2, 0.002 * 0.002, 1e-15);
+    bvh_free(&b);
+    mesh_free(m);
+}
+
 int main(void)
 {
     test_triangle_regions();
+    test_facing();
     neuv_mesh *ico = shape_icosphere(3, 1.0);
     neuv_mesh *torus = shape_torus(1.0, 0.3, 48, 24);
     CHECK(ico && torus);
