@@ -915,7 +915,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     if (s == NEUV_OK) {
         int merged = merge_fragments(m, &g, label, md->n_charts);
         if (merged < 0) s = neuv_fail_nomem("charts");
-        int settled = s == NEUV_OK ? settle_border_faces(m, md, &g, label, &s) : 0;
+        int settled = s == NEUV_OK && !o->refine_on_mesh ? settle_border_faces(m, md, &g, label, &s) : 0;
         if (s == NEUV_OK && settled > 0) {
             int again = merge_fragments(m, &g, label, md->n_charts);
             if (again < 0) s = neuv_fail_nomem("charts");
@@ -999,11 +999,12 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
              * vertex there takes their map at its closest point of the chart,
              * continued by the source atlas's linear extension (ext - anchor). */
             for (int v = 0; v < n; v++)
-                if (vertex_chart[p->vmap[v]] == mc) memcpy(closest + 3 * (size_t)v, p->sub->pos + 3 * (size_t)v, sizeof(double) * 3);
+                if (vertex_chart[p->vmap[v]] == mc || o->refine_on_mesh)
+                    memcpy(closest + 3 * (size_t)v, p->sub->pos + 3 * (size_t)v, sizeof(double) * 3);
             double *at = p->uv;
             s = param_net_apply(md->param, net, closest, n, at);
             for (int v = 0; s == NEUV_OK && v < n; v++) {
-                if (vertex_chart[p->vmap[v]] == mc) continue;
+                if (vertex_chart[p->vmap[v]] == mc || o->refine_on_mesh) continue;
                 /* the extension, in the networks' own frame (before mirroring and placing) */
                 double e[2] = {ext[2 * v] - anchor[c][2 * v], ext[2 * v + 1] - anchor[c][2 * v + 1]};
                 const atlas_chart_transform *xf = &md->xf[mc];
@@ -1084,7 +1085,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
              * as it is and pulled. */
             int pulled = 0;
             ok = relax_folds(p, scratch);
-            for (int attempt = 1; ok == 0 && attempt < 4; attempt++) {
+            for (int attempt = 1; ok == 0 && attempt < 4 && !o->refine_on_mesh; attempt++) {
                 if (attempt >= 2 && (net < 0 || baseline || deviates || o->refine_on_mesh)) break;
                 memcpy(p->uv, attempt == 1 ? target : ext, sizeof(double) * 2 * (size_t)n);
                 if (attempt != 2)
@@ -1176,7 +1177,22 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     if (s == NEUV_OK) pull_charts_inside(r, span);
     if (s == NEUV_OK) s = resolve_overlaps(r, span);
     if (s == NEUV_OK) fit_unit_square(r, span);
-    if (s == NEUV_OK) s = place_in_free_space(r, span);
+    if (s == NEUV_OK && !o->refine_on_mesh) s = place_in_free_space(r, span);
+    if (s == NEUV_OK && o->refine_on_mesh) { /* a copy's layout is nobody's texture: a fresh packing when needed */
+        uv_coverage cov;
+        s = uv_coverage_count(m->uv, m->nf, m->tri_uv, NULL, OVERLAP_RESOLUTION, &cov);
+        if (s == NEUV_OK && cov.overlapped > 0) {
+            atlas_pack_options pk;
+            atlas_pack_options_default(&pk);
+            pk.resolution = r->opts.resolution;
+            pk.padding = r->opts.padding;
+            pk.keep_scale = 1;
+            s = atlas_pack(m, r->face_chart, r->n_charts, &pk, r->transforms, &r->pack);
+            r->model.repacked = 1;
+            unwrap_add_repair(r, -1, "charts still overlapped after shrinking; atlas packed afresh (the simplified "
+                              "copy's layout is not kept)");
+        }
+    }
     for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->model.moved_charts += span[c].moved;
     free(span);
     if (s == NEUV_OK) {

@@ -77,6 +77,7 @@ struct neuv_unwrap_result {
         int moved_charts;         /* charts not where the source atlas put them (shrunk or moved) */
         int pulled_vertices;      /* corners past a source seam pulled toward their chart's island */
         int refinement_carried;   /* 1: the source's refinement of the networks' map was carried over */
+        int repacked;             /* --train-faces only: overlaps survived the shrinking, the atlas was packed afresh */
         double surface_distance;  /* largest face-centroid distance to the source surface / its bbox diagonal */
         double inference_seconds; /* from the cleaned mesh to the packed atlas (no metrics) */
         double label_agreement;   /* -1, or PatchNet inference vs stored labels (--check-inference) */

@@ -159,6 +159,7 @@ static void write_surface_model(json_writer *w, const struct neuv_unwrap_result 
     json_key(w, "pulled_vertices"); json_int(w, r->model.pulled_vertices);
     json_key(w, "shrunk_charts"); json_int(w, r->model.shrunk_charts);
     json_key(w, "moved_charts"); json_int(w, r->model.moved_charts);
+    if (r->model.trained_on_copy) { json_key(w, "repacked"); json_bool(w, r->model.repacked); }
     json_key(w, "surface_distance"); json_number(w, r->model.surface_distance);
     json_key(w, "inference_seconds"); json_number(w, r->model.inference_seconds);
     json_key(w, "patchnet_label_agreement");
