@@ -208,6 +208,40 @@ static void align_similarity(double *uv, const double *target, int n)
     }
 }
 
+/* One source chart, ready for closest-point queries of its atlas UVs. */
+typedef struct source_island {
+    neuv_mesh *sub;
+    int *vmap, *fmap;
+    double *uv; /* #CV by 2: the source atlas at the chart's vertices */
+    bvh tree;
+    int ready;
+} source_island;
+
+static neuv_status source_island_open(const unwrap_model *md, int mc, source_island *is)
+{
+    memset(is, 0, sizeof *is);
+    neuv_status s = chart_submesh(md->source, md->face_chart, mc, &is->sub, &is->vmap, &is->fmap);
+    if (s) return s;
+    is->uv = malloc(sizeof(double) * 2 * (size_t)is->sub->nv);
+    if (!is->uv) return neuv_fail_nomem("UV transfer");
+    /* A chart is one island: one UV per vertex. */
+    for (int f = 0; f < is->sub->nf; f++)
+        for (int k = 0; k < 3; k++)
+            memcpy(is->uv + 2 * (size_t)is->sub->tri[3 * f + k],
+                   md->source->uv + 2 * (size_t)md->source->tri_uv[3 * (size_t)is->fmap[f] + k], sizeof(double) * 2);
+    if ((s = bvh_build(&is->tree, is->sub))) return s;
+    is->ready = 1;
+    return NEUV_OK;
+}
+
+static void source_island_close(source_island *is)
+{
+    if (is->ready) bvh_free(&is->tree);
+    mesh_free(is->sub);
+    free(is->vmap); free(is->fmap); free(is->uv);
+    memset(is, 0, sizeof *is);
+}
+
 /* The source atlas seen from one chart of the new mesh.
  * For every piece vertex, the closest point of source chart mc:
  *   ext    (#CV by 2) the source UV there with the closest face's affine map
@@ -226,39 +260,27 @@ static void align_similarity(double *uv, const double *target, int n)
 static neuv_status source_chart_uvs(const unwrap_model *md, int mc, const chart_piece *p, double *ext, double *anchor,
                                     double *delta, double *closest)
 {
-    neuv_mesh *ssub = NULL;
-    int *svmap = NULL, *sfmap = NULL;
-    neuv_status s = chart_submesh(md->source, md->face_chart, mc, &ssub, &svmap, &sfmap);
-    if (s) return s;
-    bvh b;
-    memset(&b, 0, sizeof b);
-    s = bvh_build(&b, ssub);
+    source_island is;
+    neuv_status s = source_island_open(md, mc, &is);
     int n = p->sub->nv;
     int *face = malloc(sizeof(int) * (size_t)n);
-    double *bary = malloc(sizeof(double) * 3 * (size_t)n);
-    double *suv = malloc(sizeof(double) * 2 * (size_t)ssub->nv), *sd = NULL;
-    if (s == NEUV_OK && (!face || !bary || !suv)) s = neuv_fail_nomem("UV transfer");
-    if (s == NEUV_OK) {
-        /* The source chart's per-vertex UVs (a chart is one island: one UV per vertex). */
-        for (int f = 0; f < ssub->nf; f++)
-            for (int k = 0; k < 3; k++)
-                memcpy(suv + 2 * (size_t)ssub->tri[3 * f + k],
-                       md->source->uv + 2 * (size_t)md->source->tri_uv[3 * (size_t)sfmap[f] + k], sizeof(double) * 2);
-        if (delta) {
-            int net = md->chart_net[mc];
-            sd = malloc(sizeof(double) * 2 * (size_t)ssub->nv);
-            if (!sd) s = neuv_fail_nomem("UV transfer");
-            else s = param_net_apply(md->param, net, ssub->pos, ssub->nv, sd);
-            for (int v = 0; s == NEUV_OK && v < ssub->nv; v++) {
-                double q[2] = {md->chart_mirrored[mc] ? -sd[2 * v] : sd[2 * v], sd[2 * v + 1]}, o[2];
-                atlas_chart_transform_apply(&md->xf[mc], q, o);
-                sd[2 * v] = suv[2 * v] - o[0];
-                sd[2 * v + 1] = suv[2 * v + 1] - o[1];
-            }
+    double *bary = malloc(sizeof(double) * 3 * (size_t)n), *sd = NULL;
+    if (s == NEUV_OK && (!face || !bary)) s = neuv_fail_nomem("UV transfer");
+    const neuv_mesh *ssub = is.sub;
+    const double *suv = is.uv;
+    if (s == NEUV_OK && delta) {
+        sd = malloc(sizeof(double) * 2 * (size_t)ssub->nv);
+        if (!sd) s = neuv_fail_nomem("UV transfer");
+        else s = param_net_apply(md->param, md->chart_net[mc], ssub->pos, ssub->nv, sd);
+        for (int v = 0; s == NEUV_OK && v < ssub->nv; v++) {
+            double q[2] = {md->chart_mirrored[mc] ? -sd[2 * v] : sd[2 * v], sd[2 * v + 1]}, o[2];
+            atlas_chart_transform_apply(&md->xf[mc], q, o);
+            sd[2 * v] = suv[2 * v] - o[0];
+            sd[2 * v + 1] = suv[2 * v + 1] - o[1];
         }
     }
     if (s == NEUV_OK) {
-        bvh_closest_points(&b, n, p->sub->pos, face, bary, NULL);
+        bvh_closest_points(&is.tree, n, p->sub->pos, face, bary, NULL);
         for (int v = 0; v < n; v++) {
             const int *t = ssub->tri + 3 * face[v];
             const double *wc = bary + 3 * (size_t)v;
@@ -279,43 +301,9 @@ static neuv_status source_chart_uvs(const unwrap_model *md, int mc, const chart_
             }
         }
     }
-    bvh_free(&b);
-    free(face); free(bary); free(suv); free(sd);
-    mesh_free(ssub); free(svmap); free(sfmap);
+    source_island_close(&is);
+    free(face); free(bary); free(sd);
     return s;
-}
-
-/* One source chart, ready for closest-point queries of its atlas UVs. */
-typedef struct source_island {
-    neuv_mesh *sub;
-    int *vmap, *fmap;
-    double *uv; /* #CV by 2: the source atlas at the chart's vertices */
-    bvh tree;
-    int ready;
-} source_island;
-
-static neuv_status source_island_open(const unwrap_model *md, int mc, source_island *is)
-{
-    memset(is, 0, sizeof *is);
-    neuv_status s = chart_submesh(md->source, md->face_chart, mc, &is->sub, &is->vmap, &is->fmap);
-    if (s) return s;
-    is->uv = malloc(sizeof(double) * 2 * (size_t)is->sub->nv);
-    if (!is->uv) return neuv_fail_nomem("UV transfer");
-    for (int f = 0; f < is->sub->nf; f++)
-        for (int k = 0; k < 3; k++)
-            memcpy(is->uv + 2 * (size_t)is->sub->tri[3 * f + k],
-                   md->source->uv + 2 * (size_t)md->source->tri_uv[3 * (size_t)is->fmap[f] + k], sizeof(double) * 2);
-    if ((s = bvh_build(&is->tree, is->sub))) return s;
-    is->ready = 1;
-    return NEUV_OK;
-}
-
-static void source_island_close(source_island *is)
-{
-    if (is->ready) bvh_free(&is->tree);
-    mesh_free(is->sub);
-    free(is->vmap); free(is->fmap); free(is->uv);
-    memset(is, 0, sizeof *is);
 }
 
 /* The source atlas of the island at point p, the closest face's affine map extended. */
