@@ -280,6 +280,10 @@ static void apply_key(param_net_options *o, const char *kv)
     else if (KEY("solve")) o->solve_steps = (int)v;
     else if (KEY("heads")) o->chart_heads = (int)v;
     else if (KEY("anchor")) o->solve_anchor = v;
+    else if (KEY("solve_fold")) o->solve_fold = v;
+    else if (KEY("solve_fold_eps")) o->solve_fold_eps = v;
+    else if (KEY("solve_mips")) o->solve_mips = (int)v;
+    else if (KEY("head_fourier")) o->head_fourier = (int)v;
     else if (KEY("refine")) g_refine.iters = (int)v;
     else if (KEY("refine_lr")) g_refine.lr = v;
     else if (KEY("refine_iso")) g_refine.lambda_iso = v;

@@ -4,7 +4,8 @@
 # mapped injectively and how their angle distortion compares with LSCM on the
 # same charts. The bounds are those of docs/method.md ("The networks' own
 # map"), measured with margin on these procedural shapes; the networks before
-# the warm start and the output-layer solve fail those of the cube and genus2.
+# the heads' fold barrier fail genus2's, those before the warm start and the
+# output-layer solve also the cube's.
 set -u
 NEUV="$1"
 TMP="${NEUV_TEST_TMP:-/tmp}/cli_network_map"
@@ -39,11 +40,12 @@ PYEOF
 
 # shape, least share of area the networks map injectively, largest ratio of
 # their qce_mean to LSCM's on the same charts. Measured (1 thread) with this
-# method / with the networks before it (Adam alone, bench/RESULTS.md):
-#   cube       1.000, 1.017 / 1.000, 1.060
-#   genus2     0.646, 1.020 / 0.348 (19 of 25 charts), -
-#   sphere     1.000, 1.030 / 1.000, 1.037
-#   bent-capsule 21: 1.000, 1.055 (a family where the warm start costs a little: member 7 1.058 / 1.044)
+# method / before the heads' fold barrier / with the networks before the
+# warm start and the output-layer solve (Adam alone, bench/RESULTS.md):
+#   cube       1.000, 1.015 / 1.000, 1.017 / 1.000, 1.060
+#   genus2     1.000, 1.018 / 0.646, 1.020 / 0.348 (19 of 25 charts), -
+#   sphere     1.000, 1.029 / 1.000, 1.030 / 1.000, 1.037
+#   bent-capsule 21: 1.000, 1.054 / 1.000, 1.055
 run_shape() { # name bounds... shape args
   local name="$1" min_area="$2" max_ratio="$3"; shift 3
   "$NEUV" shape "$@" -o "$TMP/$name.obj" --quiet || { bad "shape $* failed"; return; }
@@ -52,10 +54,10 @@ run_shape() { # name bounds... shape args
   "$NEUV" eval "$TMP/$name-uv.obj" --json > "$TMP/$name-eval.json" && ok || bad "eval $name failed"
   check "$TMP/$name.json" "$TMP/$name-eval.json" "$min_area" "$max_ratio" "$name"
 }
-run_shape cube 0.95 1.035 cube
-run_shape genus2 0.55 1.05 genus2
+run_shape cube 0.95 1.03 cube
+run_shape genus2 0.95 1.035 genus2
 run_shape sphere 0.95 1.045 sphere
-run_shape bent21 0.95 1.08 bent-capsule --member 21
+run_shape bent21 0.95 1.075 bent-capsule --member 21
 
 # A classic method's charts are that method's, and the default refinement is named.
 "$NEUV" unwrap "$TMP/sphere.obj" -o "$TMP/sphere-lscm.obj" --method lscm --threads 1 --report "$TMP/sphere-lscm.json" \

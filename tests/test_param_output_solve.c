@@ -56,7 +56,7 @@ static void grid_build(neuv_mesh *g, int two, grid_data *gd)
     param_conformal_targets(pos, &gd->corners, gd->frame_inv, gd->w);
     gd->fchart = fchart;
     gd->d = (param_solve_data){n, nf, two ? 2 : 1, gd->x, gd->x, 3, gd->vchart, NULL, 0, 0, tri, fchart,
-                               gd->frame_inv, gd->w};
+                               gd->frame_inv, gd->w, 0, 0, 0};
     free(map); free(pos);
 }
 
@@ -125,6 +125,15 @@ int main(void)
     printf("Gauss-Newton gradient vs finite differences: %.3g\n", ge);
     CHECK(ge < 1e-5);
     CHECK(param_output_solve_gradient_error(&f, &one.d, 0, 4) == INFINITY); /* no anchor: refused */
+    /* The same with the fold barrier active on most faces (ε = 3 times the
+     * chart's mean |det J|): its rows give its gradient too. */
+    one.d.fold_weight = 10;
+    one.d.fold_eps = 3;
+    double gf = param_output_solve_gradient_error(&f, &one.d, 1e-3, 40);
+    printf("with the fold barrier: %.3g\n", gf);
+    CHECK(gf < 1e-5);
+    one.d.fold_weight = 0;
+    one.d.fold_eps = 0;
 
     /* Shared solve on one flat chart: a similarity is in reach of the features. */
     int fl0, fl1;
@@ -139,6 +148,14 @@ int main(void)
     CHECK(q1 < 1.35); /* measured 1.283 from 37.3: 24 random features, not a similarity exactly */
     CHECK(fl1 <= fl0);
 
+    /* On that unfolded map, the scale-free energy's rows give its gradient. */
+    CHECK_INT(fl1, 0);
+    one.d.mips_steps = 1;
+    double gm = param_output_solve_gradient_error(&f, &one.d, 1e-3, 40);
+    printf("scale-free energy: %.3g\n", gm);
+    CHECK(gm < 1e-5);
+    one.d.mips_steps = 0;
+
     /* Per-chart heads on two charts start from the shared layer: never worse, no new flip. */
     int hs = param_head_size(&f);
     CHECK_INT(hs, 2 * (24 * 2 + 1));
@@ -152,6 +169,31 @@ int main(void)
     CHECK(qh <= qs + 1e-9);
     CHECK(qh < 1.08); /* measured 1.057: a head reads every hidden layer */
     CHECK(fl1 <= fl0);
+
+    /* Heads that also read the Fourier features of x: x itself among them,
+     * so on a flat chart an affine (conformal) map is in reach. */
+    f.fourier = 5;
+    CHECK_INT(param_mlp_fourier_width(&f), 13);
+    CHECK_INT(param_head_size(&f), 2 * (24 * 2 + 13 + 1));
+    float px[3] = {0.3f, -0.2f, 0.1f}, feat[13];
+    param_mlp_fourier_features(&f, px, 1, 3, feat);
+    double z0 = 1 - 1.0 / 5, r0 = sqrt(1 - z0 * z0), t0 = 3.14159265358979 / 1.2 * (r0 * 0.3 + z0 * 0.1);
+    CHECK(feat[0] == px[0] && feat[1] == px[1] && feat[2] == px[2]);
+    CHECK_NEAR(feat[3], sin(t0), 1e-6);
+    CHECK_NEAR(feat[4], cos(t0), 1e-6);
+    double zj = 1 - 1.5 * 2.0 / 5, rj = sqrt(1 - zj * zj), th = 3.14159265358979 * (3 - sqrt(5.0)); /* j = 1: twice the frequency */
+    double t1 = 2 * 3.14159265358979 / 1.2 * (rj * cos(th) * 0.3 + rj * sin(th) * -0.2 + zj * 0.1);
+    CHECK_NEAR(feat[5], sin(t1), 1e-6);
+    CHECK_NEAR(feat[6], cos(t1), 1e-6);
+    float *fheads = malloc(sizeof(float) * 2 * (size_t)param_head_size(&f));
+    CHECK_INT(param_output_solve_heads(&f, &two.d, 1e-3, 6, fheads, &rep), NEUV_OK);
+    double qf = map_qce(&f, fheads, &two, &fl1);
+    printf("two charts, heads with Fourier features: qce_mean %.4f, flipped %d\n", qf, fl1);
+    CHECK(qf < qh);
+    CHECK(qf < 1.02);
+    CHECK_INT(fl1, 0);
+    free(fheads);
+    f.fourier = 0;
 
     /* The inverse refit: MLP_f⁻¹(MLP_f(x)) comes back to x. */
     nn_ctx *ctx = nn_ctx_create(0);

@@ -80,13 +80,44 @@ nn_tensor *param_mlp_forward(nn_ctx *ctx, const param_mlp *m, nn_tensor *x, nn_t
 
 int param_mlp_head_width(const param_mlp *m)
 {
-    return m->depth > 1 ? m->width * (m->depth - 1) : 0;
+    return m->depth > 1 ? m->width * (m->depth - 1) + param_mlp_fourier_width(m) : 0;
+}
+
+int param_mlp_fourier_width(const param_mlp *m)
+{
+    return m->fourier > 0 ? 3 + 2 * m->fourier : 0;
+}
+
+void param_mlp_fourier_features(const param_mlp *m, const float *x, int n, int stride, float *out)
+{
+    int k = m->fourier, F = param_mlp_fourier_width(m);
+    const double pi = 3.14159265358979323846, golden = pi * (3 - sqrt(5.0));
+    for (int i = 0; i < n; i++) {
+        const float *p = x + (size_t)i * stride;
+        float *o = out + (size_t)i * F;
+        o[0] = p[0]; o[1] = p[1]; o[2] = p[2];
+        for (int j = 0; j < k; j++) {
+            double z = 1 - (j + 0.5) * 2.0 / k, r = sqrt(fmax(0, 1 - z * z)), th = golden * j;
+            double w = (pi / 1.2) * (double)(1 << (j % 3));
+            double t = w * (r * cos(th) * p[0] + r * sin(th) * p[1] + z * p[2]);
+            o[3 + 2 * j] = (float)sin(t);
+            o[4 + 2 * j] = (float)cos(t);
+        }
+    }
+}
+
+static nn_tensor *fourier_tensor(nn_ctx *ctx, const param_mlp *m, nn_tensor *x)
+{
+    nn_tensor *t = x ? nn_fill(ctx, x->rows, param_mlp_fourier_width(m), 0) : NULL;
+    if (t) param_mlp_fourier_features(m, x->data, x->rows, x->cols, t->data);
+    return t;
 }
 
 nn_tensor *param_mlp_head_features(nn_ctx *ctx, const param_mlp *m, nn_tensor *x, nn_tensor *psi, const int *psi_row)
 {
     if (m->depth < 2) return NULL;
     nn_tensor *h = nn_leaky_relu(ctx, forward_layers(ctx, m, x, psi, psi_row, 1), m->slope), *all = h;
+    if (m->fourier > 0) all = nn_concat_cols(ctx, fourier_tensor(ctx, m, x), h);
     for (int l = 1; l < m->depth - 1; l++) {
         h = nn_leaky_relu(ctx, nn_linear_forward(ctx, &m->rest[l - 1], h), m->slope);
         all = nn_concat_cols(ctx, all, h);

@@ -21,6 +21,8 @@ typedef struct param_mlp {
     float slope;                 /* LeakyReLU slope */
     nn_tensor *w_x, *w_psi, *b0; /* first layer: in by W, psi by W, 1 by W (W = width, or out if depth 1) */
     nn_linear *rest;             /* depth - 1 layers */
+    int fourier;                 /* Fourier directions the per-chart heads also read (0: none);
+                                    set after param_mlp_create, which leaves it 0 */
 } param_mlp;
 
 /* Registers the layers as "<prefix>.0.wx", "<prefix>.0.wpsi", "<prefix>.0.b",
@@ -44,11 +46,24 @@ nn_tensor *param_mlp_forward(nn_ctx *ctx, const param_mlp *m, nn_tensor *x, nn_t
  * NULL when depth < 2 (no hidden layer) or on failure. */
 nn_tensor *param_mlp_hidden(nn_ctx *ctx, const param_mlp *m, nn_tensor *x, nn_tensor *psi, const int *psi_row);
 
-/* Every hidden layer's activations side by side (#N by
- * param_mlp_head_width(m) = width x (depth - 1), the first hidden layer
- * first, the last hidden layer last): what a per-chart output layer reads
- * (param_output_solve.h). NULL when depth < 2 or on failure. */
+/* What a per-chart output layer reads (param_output_solve.h): the Fourier
+ * features of x (below; none when m->fourier is 0), then every hidden
+ * layer's activations, the first hidden layer first and the last hidden
+ * layer last (#N by param_mlp_head_width(m) = fourier width + width x
+ * (depth - 1)). NULL when depth < 2 or on failure. */
 int param_mlp_head_width(const param_mlp *m);
+
+/* With m->fourier = k > 0, a head also reads, before the hidden layers,
+ * param_mlp_fourier_width(m) = 3 + 2k fixed features of the input point x
+ * (the chart's normalized frame): x itself, then sin and cos of ω_j d_j·x for
+ * j < k, d_j the j-th point of a Fibonacci lattice on the unit sphere and
+ * ω_j = (π / 1.2) 2^(j mod 3): a chart spans about 1.2 normalized units, so
+ * half a period, one and two periods across it. No weights: they are a
+ * function of the surface point only, whatever the triangulation.
+ * param_mlp_fourier_features writes them for n points (x rows `stride`
+ * floats apart) into out (#n by the width). 0 when k = 0. */
+int param_mlp_fourier_width(const param_mlp *m);
+void param_mlp_fourier_features(const param_mlp *m, const float *x, int n, int stride, float *out);
 nn_tensor *param_mlp_head_features(nn_ctx *ctx, const param_mlp *m, nn_tensor *x, nn_tensor *psi, const int *psi_row);
 
 #endif

@@ -46,11 +46,17 @@ void param_net_default_options(param_net_options *o, param_preset preset)
     /* The networks' own map (bench/RESULTS.md, "The networks' own map"):
      * the first 200 steps also pull MLP_f towards each chart's LSCM map
      * (weight 10), and after Adam the output layer is solved for the
-     * conformal energy, shared and per chart. */
+     * conformal energy, shared and per chart; each chart's head with a fold
+     * barrier (weight 1e4 below 5% of the chart's mean |det J|), then for the
+     * scale-free conformal energy when its map is unfolded. */
     o->warm_iters = 200;
     o->lambda_warm = 10;
-    o->solve_steps = 6;
+    o->solve_steps = 40;
     o->solve_anchor = 1e-3;
+    o->solve_fold = 1e4;
+    o->solve_fold_eps = 0.05;
+    o->solve_mips = 20;
+    o->head_fourier = 64;
     o->chart_heads = 1;
     if (preset == PARAM_PRESET_PAPER) {
         o->width = 464;
@@ -62,6 +68,7 @@ void param_net_default_options(param_net_options *o, param_preset preset)
         o->warm_iters = 0;
         o->solve_steps = 0;
         o->chart_heads = 0;
+        o->head_fourier = 0;
     }
 }
 
@@ -734,6 +741,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     if (s == NEUV_OK)
         s = param_mlp_create(&model->g, 2, d.psi_dim, o->width, 3, o->depth, o->leaky_slope, &r, &model->params, "g");
     model->psi_mode = o->psi_mode;
+    model->f.fourier = o->init ? o->init->f.fourier : o->head_fourier;
     if (s == NEUV_OK && o->init) s = copy_weights(o->init, model, d.psi_dim);
     if (s != NEUV_OK) goto done;
     model->psi_dim = d.psi_dim;
@@ -835,14 +843,19 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     rep->iters = it;
     if (o->solve_steps > 0 && o->depth >= 2) {
         param_solve_data sd = {d.nv, d.nf, n_charts, d.x, d.x, 3, d.vchart, pooled ? d.psi : d.feat, d.psi_dim,
-                               !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w};
+                               !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w, 0, 0, 0};
         param_solve_report sr, hr;
         memset(&hr, 0, sizeof hr);
         s = param_output_solve_conformal(&model->f, &sd, o->solve_anchor, o->solve_steps, &sr);
         if (s == NEUV_OK && o->chart_heads) {
             model->heads = malloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
             if (!model->heads) s = neuv_fail_nomem("chart heads");
-            else s = param_output_solve_heads(&model->f, &sd, o->solve_anchor, o->solve_steps, model->heads, &hr);
+            else {
+                sd.fold_weight = o->solve_fold;
+                sd.fold_eps = o->solve_fold_eps;
+                sd.mips_steps = o->solve_mips;
+                s = param_output_solve_heads(&model->f, &sd, o->solve_anchor, o->solve_steps, model->heads, &hr);
+            }
         }
         if (s == NEUV_OK) s = param_output_solve_inverse(&model->g, &model->f, model->heads, &sd);
         if (s != NEUV_OK) goto done;

@@ -72,6 +72,12 @@ typedef struct param_net_options {
     /* With solve_steps: also one output layer per chart (param_output_solve.h),
      * used for this mesh's charts (and a saved model's); 0: the shared one only. */
     int chart_heads;
+    /* The heads' solve with a fold barrier, then steps on the scale-free
+     * conformal energy (param_solve_data; 0: off). */
+    double solve_fold, solve_fold_eps;
+    int solve_mips;
+    /* Fourier directions the heads also read (param_mlp.h; 0: none). */
+    int head_fourier;
     double sigma;           /* L_iso pair radius in normalized units, 0.2 */
     double radius;          /* normalized geodesic radius of every chart, 0.6 */
     int iters;              /* iteration cap */

@@ -127,7 +127,8 @@ static void face_weights(const float *B, double wx[3], double wy[3])
 
 /* Conformal energy of the block's faces and the count of faces whose UV
  * orientation disagrees with their chart's σ. */
-static double block_energy(const param_solve_data *d, const block *b, const double *uv, const int *sigma, int *flips)
+static double block_energy(const param_solve_data *d, const block *b, const double *uv, const int *sigma,
+                           const double *fold_s2, int *flips)
 {
     double e = 0;
     int fl = 0;
@@ -144,7 +145,12 @@ static double block_energy(const param_solve_data *d, const block *b, const doub
         }
         double sg = sigma[d->fchart[f]], r1 = J[0] - sg * J[3], r2 = J[1] + sg * J[2];
         e += d->face_w[f] * (r1 * r1 + r2 * r2);
-        if (d->face_w[f] > 0 && sg * (J[0] * J[3] - J[1] * J[2]) <= 0) fl++;
+        double det = sg * (J[0] * J[3] - J[1] * J[2]);
+        if (fold_s2 && d->fold_weight > 0) {
+            double s2 = fold_s2[d->fchart[f]], gap = d->fold_eps * s2 - det;
+            if (gap > 0 && s2 > 0) e += d->fold_weight * d->face_w[f] * gap * gap / s2;
+        }
+        if (d->face_w[f] > 0 && det <= 0) fl++;
     }
     if (flips) *flips = fl;
     return e;
@@ -164,9 +170,43 @@ static double block_anchor(const block *b, const double *uv, const double *uv0, 
 /* Gauss-Newton system at (z, uv): per face the two Cauchy-Riemann rows, per
  * vertex the two anchor rows, each linearized through tanh:
  * u_v ≈ s_v φ̂_v·θ_u + κ_v with s = 1 − uv², κ = uv − s z. */
+/* The fold barrier's row for face f when it is active (σ det J < ε s̄²):
+ * r = k (ε s̄² − σ det J) with k = sqrt(fold_weight w_f / s̄²), det J
+ * linearized in the vertices' u, v and those through tanh as above. */
+static void fold_row(const param_solve_data *d, int f, const double *phi, int H, const double *z, const double *uv,
+                     double sg, double s2, normal_eq *q)
+{
+    const int *t = d->tri + 3 * f;
+    double wx[3], wy[3], J[4] = {0, 0, 0, 0};
+    face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
+    for (int j = 0; j < 3; j++) {
+        J[0] += wx[j] * uv[2 * t[j]]; J[1] += wy[j] * uv[2 * t[j]];
+        J[2] += wx[j] * uv[2 * t[j] + 1]; J[3] += wy[j] * uv[2 * t[j] + 1];
+    }
+    double det = sg * (J[0] * J[3] - J[1] * J[2]), gap = d->fold_eps * s2 - det;
+    if (!(gap > 0) || !(s2 > 0) || !(d->face_w[f] > 0)) return;
+    double k = sqrt(d->fold_weight * d->face_w[f] / s2), *c, *r = normal_eq_row(q, &c);
+    int K = H + 1;
+    /* r(θ) ≈ gap − k σ ∇det·(θ − θ0): row −k σ ∇det, constant gap + k σ ∇det·θ0. */
+    double cst = k * gap;
+    for (int j = 0; j < 3; j++) {
+        int v = t[j];
+        const double *p = phi + (size_t)v * H;
+        double su = 1 - uv[2 * v] * uv[2 * v], sv = 1 - uv[2 * v + 1] * uv[2 * v + 1];
+        double du = sg * (J[3] * wx[j] - J[2] * wy[j]) * su, dv = sg * (J[0] * wy[j] - J[1] * wx[j]) * sv;
+        for (int i = 0; i < H; i++) { r[i] -= k * du * p[i]; r[K + i] -= k * dv * p[i]; }
+        r[H] -= k * du; r[K + H] -= k * dv;
+        cst += k * (du * z[2 * v] + dv * z[2 * v + 1]);
+    }
+    *c = cst;
+}
+
+static void anchor_rows(const block *b, const double *phi, int H, const double *z, const double *uv, const double *uv0,
+                        const double *mv, double anchor, normal_eq *q);
+
 static void gauss_newton_rows(const param_solve_data *d, const block *b, const double *phi, int H, const double *z,
-                              const double *uv, const double *uv0, const double *mv, const int *sigma, double anchor,
-                              normal_eq *q)
+                              const double *uv, const double *uv0, const double *mv, const int *sigma,
+                              const double *fold_s2, double anchor, normal_eq *q)
 {
     int K = H + 1;
     for (int k = 0; k < b->nf; k++) {
@@ -192,7 +232,16 @@ static void gauss_newton_rows(const param_solve_data *d, const block *b, const d
             *c1 += w * wx[j] * ku - sg * w * wy[j] * kv;
             *c2 += w * wy[j] * ku + sg * w * wx[j] * kv;
         }
+        if (fold_s2 && d->fold_weight > 0) fold_row(d, f, phi, H, z, uv, sg, fold_s2[d->fchart[f]], q);
     }
+    anchor_rows(b, phi, H, z, uv, uv0, mv, anchor, q);
+}
+
+/* The anchor's two rows per vertex, linearized through tanh. */
+static void anchor_rows(const block *b, const double *phi, int H, const double *z, const double *uv, const double *uv0,
+                        const double *mv, double anchor, normal_eq *q)
+{
+    int K = H + 1;
     for (int k = 0; k < b->nv; k++) {
         int v = b->verts[k];
         double w = sqrt(anchor * mv[v]);
@@ -208,6 +257,75 @@ static void gauss_newton_rows(const param_solve_data *d, const block *b, const d
     }
 }
 
+/* The face's Jacobian in its frame from the vertices' uv. */
+static void face_jacobian(const param_solve_data *d, int f, const double *uv, double wx[3], double wy[3], double J[4])
+{
+    const int *t = d->tri + 3 * f;
+    face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
+    J[0] = J[1] = J[2] = J[3] = 0;
+    for (int q = 0; q < 3; q++) {
+        J[0] += wx[q] * uv[2 * t[q]]; J[1] += wy[q] * uv[2 * t[q]];
+        J[2] += wx[q] * uv[2 * t[q] + 1]; J[3] += wy[q] * uv[2 * t[q] + 1];
+    }
+}
+
+/* Scale-free conformal energy Σ_f w_f [(J11 − σ J22)² + (J12 + σ J21)²] / (σ det J)
+ * = 2 Σ_f w_f (MIPS_f − 1), MIPS = (s1/s2 + s2/s1)/2: the qce of each face
+ * whatever its size. Infinite when a face folds (a barrier). */
+static double block_energy_mips(const param_solve_data *d, const block *b, const double *uv, const int *sigma)
+{
+    double e = 0;
+    for (int k = 0; k < b->nf; k++) {
+        int f = b->faces[k];
+        if (!(d->face_w[f] > 0)) continue;
+        double wx[3], wy[3], J[4];
+        face_jacobian(d, f, uv, wx, wy, J);
+        double sg = sigma[d->fchart[f]], r1 = J[0] - sg * J[3], r2 = J[1] + sg * J[2];
+        double D = sg * (J[0] * J[3] - J[1] * J[2]);
+        if (!(D > 0)) return INFINITY;
+        e += d->face_w[f] * (r1 * r1 + r2 * r2) / D;
+    }
+    return e;
+}
+
+/* Gauss-Newton rows of block_energy_mips (residuals r/sqrt(D), r the
+ * Cauchy-Riemann pair, D = σ det J), linearized through tanh, and the
+ * anchor's rows. Every face must be unfolded. */
+static void mips_rows(const param_solve_data *d, const block *b, const double *phi, int H, const double *z,
+                      const double *uv, const double *uv0, const double *mv, const int *sigma, double anchor,
+                      normal_eq *q)
+{
+    int K = H + 1;
+    for (int k = 0; k < b->nf; k++) {
+        int f = b->faces[k];
+        if (!(d->face_w[f] > 0)) continue;
+        const int *t = d->tri + 3 * f;
+        double wx[3], wy[3], J[4];
+        face_jacobian(d, f, uv, wx, wy, J);
+        double sg = sigma[d->fchart[f]], w = sqrt(d->face_w[f]);
+        double D = sg * (J[0] * J[3] - J[1] * J[2]), rs = 1 / sqrt(D);
+        double r[2] = {J[0] - sg * J[3], J[1] + sg * J[2]};
+        for (int e = 0; e < 2; e++) {
+            double *c, *row = normal_eq_row(q, &c), cst = w * r[e] * rs;
+            for (int j = 0; j < 3; j++) {
+                int v = t[j];
+                const double *p = phi + (size_t)v * H;
+                double su = 1 - uv[2 * v] * uv[2 * v], sv = 1 - uv[2 * v + 1] * uv[2 * v + 1];
+                /* ∂r/∂u_v, ∂r/∂v_v and ∂D/∂u_v, ∂D/∂v_v */
+                double ru = e == 0 ? wx[j] : wy[j], rv = e == 0 ? -sg * wy[j] : sg * wx[j];
+                double Du = sg * (J[3] * wx[j] - J[2] * wy[j]), Dv = sg * (J[0] * wy[j] - J[1] * wx[j]);
+                double gu = w * (ru * rs - 0.5 * r[e] * rs / D * Du) * su;
+                double gv = w * (rv * rs - 0.5 * r[e] * rs / D * Dv) * sv;
+                for (int i = 0; i < H; i++) { row[i] += gu * p[i]; row[K + i] += gv * p[i]; }
+                row[H] += gu; row[K + H] += gv;
+                cst -= gu * z[2 * v] + gv * z[2 * v + 1];
+            }
+            *c = cst;
+        }
+    }
+    anchor_rows(b, phi, H, z, uv, uv0, mv, anchor, q);
+}
+
 /* Working state shared by the shared and per-chart solves. */
 typedef struct solve_state {
     const param_solve_data *d;
@@ -217,6 +335,7 @@ typedef struct solve_state {
     double *tz, *tuv;        /* nv by 2, trial */
     double *mv;              /* nv anchor weights (pins included) */
     int *sigma;              /* n_charts */
+    double *fold_s2;         /* n_charts: mean |det J| of uv0 (the fold barrier's scale) */
     int *face_start, *face_list, *vert_start, *vert_list; /* per-chart CSR */
     int *all_faces, *all_verts;
 } solve_state;
@@ -224,7 +343,7 @@ typedef struct solve_state {
 static void solve_state_free(solve_state *st)
 {
     free(st->phi); free(st->z); free(st->uv); free(st->uv0); free(st->tz); free(st->tuv); free(st->mv);
-    free(st->sigma); free(st->face_start); free(st->face_list); free(st->vert_start); free(st->vert_list);
+    free(st->sigma); free(st->fold_s2); free(st->face_start); free(st->face_list); free(st->vert_start); free(st->vert_list);
     free(st->all_faces); free(st->all_verts);
 }
 
@@ -267,6 +386,7 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     st->z = malloc(v2); st->uv = malloc(v2); st->uv0 = malloc(v2); st->tz = malloc(v2); st->tuv = malloc(v2);
     st->mv = calloc((size_t)(nv > 0 ? nv : 1), sizeof(double));
     st->sigma = malloc(sizeof(int) * (size_t)nc);
+    st->fold_s2 = calloc((size_t)nc, sizeof(double));
     st->face_start = calloc((size_t)nc + 1, sizeof(int));
     st->vert_start = calloc((size_t)nc + 1, sizeof(int));
     st->face_list = malloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
@@ -274,7 +394,7 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     st->all_faces = malloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
     st->all_verts = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
     double *csum = calloc((size_t)nc, sizeof(double));
-    if (!st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->face_start ||
+    if (!st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->fold_s2 || !st->face_start ||
         !st->vert_start || !st->face_list || !st->vert_list || !st->all_faces || !st->all_verts || !csum) {
         free(csum);
         return neuv_fail_nomem("output-layer solve");
@@ -302,33 +422,64 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
         for (int k = 0; k < 3; k++) st->mv[t[k]] += d->face_w[f0] / 3;
     }
     for (int c = 0; c < nc; c++) st->sigma[c] = csum[c] < 0 ? -1 : 1;
+    /* The fold barrier's scale: each chart's area-weighted mean |det J| in uv0. */
+    memset(csum, 0, sizeof(double) * (size_t)nc);
+    for (int f0 = 0; f0 < d->nf; f0++) {
+        const int *t = d->tri + 3 * f0;
+        double wx[3], wy[3], J[4] = {0, 0, 0, 0};
+        face_weights(d->frame_inv + 4 * (size_t)f0, wx, wy);
+        for (int q = 0; q < 3; q++) {
+            J[0] += wx[q] * st->uv[2 * t[q]]; J[1] += wy[q] * st->uv[2 * t[q]];
+            J[2] += wx[q] * st->uv[2 * t[q] + 1]; J[3] += wy[q] * st->uv[2 * t[q] + 1];
+        }
+        st->fold_s2[d->fchart[f0]] += d->face_w[f0] * fabs(J[0] * J[3] - J[1] * J[2]);
+        csum[d->fchart[f0]] += d->face_w[f0];
+    }
+    for (int c = 0; c < nc; c++) st->fold_s2[c] = csum[c] > 0 ? st->fold_s2[c] / csum[c] : 0;
     free(csum);
     add_pins(st, anchor);
     return NEUV_OK;
 }
 
-/* Gauss-Newton on theta for one block, from the state's z/uv at theta. A
- * step is halved until the energy falls; the result is the lowest-energy
- * iterate that flips no more faces than uv0 (the start when none does).
- * Returns the steps up to that iterate, or -1 on allocation failure. */
-static int solve_block(solve_state *st, const block *b, double anchor, int steps, double *theta)
+/* The objective of a descent: 0, the conformal energy (with the fold
+ * barrier when d->fold_weight > 0); 1, the scale-free one (block_energy_mips);
+ * both plus the anchor. *flips: the faces folded against their chart. */
+static double block_objective(const solve_state *st, const block *b, const double *uv, int mips, double anchor,
+                              int *flips)
+{
+    const param_solve_data *d = st->d;
+    double e = block_energy(d, b, uv, st->sigma, st->fold_s2, flips);
+    if (mips) e = block_energy_mips(d, b, uv, st->sigma);
+    return e + anchor * block_anchor(b, uv, st->uv0, st->mv);
+}
+
+/* Gauss-Newton on theta for one block and objective, from the state's z/uv
+ * at theta. A step is halved until the objective falls. The result is the
+ * iterate chosen by `keep` among the start and the steps: without the fold
+ * barrier the lowest objective with no more flips than the start; with it,
+ * the fewest flips, then the lowest objective (the scale-free objective
+ * never flips a face). Returns the steps up to that iterate, or -1 on
+ * allocation failure; *flips_out: that iterate's folded faces. */
+static int descend(solve_state *st, const block *b, int mips, double anchor, int steps, double *theta, int *flips_out)
 {
     const param_solve_data *d = st->d;
     int H = st->H, n = 2 * (H + 1), flips0, taken = 0, best_step = 0;
     double *trial = malloc(sizeof(double) * (size_t)n), *best = malloc(sizeof(double) * (size_t)n);
     if (!trial || !best) { free(trial); free(best); return -1; }
     memcpy(best, theta, sizeof(double) * (size_t)n);
-    double e = block_energy(d, b, st->uv, st->sigma, &flips0) + anchor * block_anchor(b, st->uv, st->uv0, st->mv);
+    double e = block_objective(st, b, st->uv, mips, anchor, &flips0);
+    int flips_start = flips0, fewest = !mips && d->fold_weight > 0;
     for (int step = 0; step < steps; step++) {
         normal_eq q;
         if (normal_eq_init(&q, n) != NEUV_OK) { free(trial); free(best); return -1; }
-        gauss_newton_rows(d, b, st->phi, H, st->z, st->uv, st->uv0, st->mv, st->sigma, anchor, &q);
+        if (mips) mips_rows(d, b, st->phi, H, st->z, st->uv, st->uv0, st->mv, st->sigma, anchor, &q);
+        else gauss_newton_rows(d, b, st->phi, H, st->z, st->uv, st->uv0, st->mv, st->sigma, st->fold_s2, anchor, &q);
         if (normal_eq_solve(&q, 0, NULL) != 0) { normal_eq_free(&q); break; }
         int kept = 0, fl = 0;
-        for (double alpha = 1; alpha > 1.0 / 64 && !kept; alpha *= 0.5) {
+        for (double alpha = 1; alpha > (mips ? 1e-4 : 1.0 / 64) && !kept; alpha *= 0.5) {
             for (int i = 0; i < n; i++) trial[i] = theta[i] + alpha * (q.g[i] - theta[i]);
             map_block(st->phi, H, trial, b, st->tz, st->tuv);
-            double et = block_energy(d, b, st->tuv, st->sigma, &fl) + anchor * block_anchor(b, st->tuv, st->uv0, st->mv);
+            double et = block_objective(st, b, st->tuv, mips, anchor, &fl);
             if (isfinite(et) && et < e) {
                 memcpy(theta, trial, sizeof(double) * (size_t)n);
                 for (int k = 0; k < b->nv; k++) {
@@ -342,14 +493,29 @@ static int solve_block(solve_state *st, const block *b, double anchor, int steps
         normal_eq_free(&q);
         if (!kept) break;
         taken++;
-        if (fl <= flips0) { memcpy(best, theta, sizeof(double) * (size_t)n); best_step = taken; }
+        if (fewest ? fl <= flips0 : fl <= flips_start) {
+            memcpy(best, theta, sizeof(double) * (size_t)n);
+            best_step = taken;
+            flips0 = fl;
+        }
     }
     if (best_step != taken) { /* back to the best valid iterate */
         memcpy(theta, best, sizeof(double) * (size_t)n);
         map_block(st->phi, H, theta, b, st->z, st->uv);
     }
+    if (flips_out) *flips_out = best_step > 0 ? flips0 : flips_start;
     free(trial); free(best);
     return best_step;
+}
+
+/* The conformal descent, then, when d->mips_steps > 0 and the map is
+ * injective on the block, the scale-free one. Returns the steps kept or -1. */
+static int solve_block(solve_state *st, const block *b, double anchor, int steps, double *theta)
+{
+    int flips, taken = descend(st, b, 0, anchor, steps, theta, &flips);
+    if (taken < 0 || st->d->mips_steps <= 0 || flips > 0) return taken;
+    int more = descend(st, b, 1, anchor, st->d->mips_steps, theta, NULL);
+    return more < 0 ? -1 : taken + more;
 }
 
 static void theta_from_layer(const nn_linear *l, int H, double *theta)
@@ -384,12 +550,12 @@ neuv_status param_output_solve_conformal(param_mlp *f, const param_solve_data *d
     s = solve_state_init(&st, f, d, anchor, 0, theta);
     if (s == NEUV_OK) {
         block all = {st.all_faces, st.all_verts, d->nf, d->nv};
-        rep->energy_before = block_energy(d, &all, st.uv, st.sigma, NULL);
+        rep->energy_before = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
         int taken = solve_block(&st, &all, anchor, steps, theta);
         if (taken < 0) s = neuv_fail_nomem("output-layer solve");
         else {
             rep->steps = taken;
-            rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL);
+            rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
             for (int j = 0; j < 2; j++) {
                 for (int i = 0; i < H; i++) out->w->data[(size_t)i * 2 + j] = (float)theta[(size_t)j * (H + 1) + i];
                 out->b->data[j] = (float)theta[(size_t)j * (H + 1) + H];
@@ -425,7 +591,7 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
     s = solve_state_init(&st, f, d, anchor, 1, shared);
     if (s == NEUV_OK) {
         block all = {st.all_faces, st.all_verts, d->nf, d->nv};
-        rep->energy_before = block_energy(d, &all, st.uv, st.sigma, NULL);
+        rep->energy_before = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
     }
     for (int c = 0; s == NEUV_OK && c < d->n_charts; c++) {
         block b = {st.face_list + st.face_start[c], st.vert_list + st.vert_start[c],
@@ -439,7 +605,7 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
     }
     if (s == NEUV_OK) {
         block all = {st.all_faces, st.all_verts, d->nf, d->nv};
-        rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL);
+        rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
     }
     solve_state_free(&st);
     free(shared); free(theta);
@@ -532,7 +698,9 @@ double param_output_solve_gradient_error(const param_mlp *f, const param_solve_d
     if (solve_state_init(&st, f, d, anchor, 0, theta) != NEUV_OK) { solve_state_free(&st); goto out; }
     block all = {st.all_faces, st.all_verts, d->nf, d->nv};
     if (normal_eq_init(&q, n) != NEUV_OK) { solve_state_free(&st); goto out; }
-    gauss_newton_rows(d, &all, st.phi, H, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &q);
+    int mips = d->mips_steps > 0;
+    if (mips) mips_rows(d, &all, st.phi, H, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &q);
+    else gauss_newton_rows(d, &all, st.phi, H, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &q);
     normal_eq_flush(&q);
     /* The linearization is exact at θ: ∇E = 2 (A θ − g), A symmetric (upper triangle stored). */
     cblas_dsymv(CblasRowMajor, CblasUpper, n, 2.0, q.a, n, theta, 1, 0.0, grad, 1);
@@ -546,7 +714,7 @@ double param_output_solve_gradient_error(const param_mlp *f, const param_solve_d
         for (int sgn = 0; sgn < 2; sgn++) {
             theta[i] = keep + (sgn ? -h : h);
             map_block(st.phi, H, theta, &all, st.tz, st.tuv);
-            e[sgn] = block_energy(d, &all, st.tuv, st.sigma, NULL) + anchor * block_anchor(&all, st.tuv, st.uv0, st.mv);
+            e[sgn] = block_objective(&st, &all, st.tuv, mips, anchor, NULL);
         }
         theta[i] = keep;
         double fd = (e[0] - e[1]) / (2 * h);

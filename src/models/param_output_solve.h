@@ -47,6 +47,15 @@ typedef struct param_solve_data {
     const int *fchart;       /* nf */
     const float *frame_inv;  /* nf by 4 (param_conformal_targets) */
     const float *face_w;     /* nf: share of the normalized 3D area */
+    /* Fold barrier (0: off): fold_weight Σ_f w_f (ε s̄² − σ det J_f)² / s̄² over
+     * the faces where σ det J_f < ε s̄², s̄² the chart's area-weighted mean
+     * |det J| in uv⁰ and ε = fold_eps. */
+    double fold_weight, fold_eps;
+    /* Then, on a chart the map leaves unfolded, Gauss-Newton steps on the
+     * scale-free conformal energy 2 Σ_f w_f (MIPS_f − 1), MIPS = (s1/s2 +
+     * s2/s1)/2, whose barrier at det J = 0 keeps every face unfolded
+     * (0: none). */
+    int mips_steps;
 } param_solve_data;
 
 typedef struct param_solve_report {
@@ -85,7 +94,9 @@ void param_heads_apply(const param_mlp *f, const float *hidden, int n, const int
 /* For tests: the largest difference, relative to the largest gradient
  * entry, between the gradient of E that the Gauss-Newton rows give at f's
  * shared output layer (2 Jᵀ r) and a central finite difference of E, over
- * n_probe of its coordinates. INFINITY on bad input or allocation failure. */
+ * n_probe of its coordinates; E is the scale-free energy when
+ * d->mips_steps > 0 (then f's map must fold no face). INFINITY on bad input
+ * or allocation failure. */
 double param_output_solve_gradient_error(const param_mlp *f, const param_solve_data *d, double anchor, int n_probe);
 
 #endif

@@ -176,6 +176,7 @@ static char *header_json(const unwrap_model *m)
         json_key(&w, "param_width"); json_int(&w, p->f.width);
         json_key(&w, "param_depth"); json_int(&w, p->f.depth);
         json_key(&w, "param_heads"); json_int(&w, p->heads && p->n_charts > 0 ? 1 : 0);
+        json_key(&w, "param_head_fourier"); json_int(&w, p->f.fourier);
         json_key(&w, "param_uv_gain"); json_int(&w, p->uv_gain && p->n_charts > 0 ? 1 : 0);
         json_key(&w, "param_slope"); json_number(&w, p->f.slope);
     }
@@ -401,6 +402,8 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     long long heads = 0, gain = 0; /* per-chart output layers and UV scales (absent in older models) */
     if (header_value(h, "param_heads") && (s = header_int(h, "param_heads", 0, 1, &heads))) return s;
     if (header_value(h, "param_uv_gain") && (s = header_int(h, "param_uv_gain", 0, 1, &gain))) return s;
+    long long fourier = 0; /* absent in models from before the heads read Fourier features */
+    if (header_value(h, "param_head_fourier") && (s = header_int(h, "param_head_fourier", 0, 4096, &fourier))) return s;
     const char *sv = header_value(h, "param_slope");
     char *end;
     double slope = sv ? strtod(sv, &end) : NAN;
@@ -428,6 +431,7 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     rng_seed(&r, 1); /* the initial values are overwritten by the file's */
     s = param_mlp_create(&p->f, 3, (int)psi, (int)width, 2, (int)depth, (float)slope, &r, &p->params, "f");
     if (!s) s = param_mlp_create(&p->g, 2, (int)psi, (int)width, 3, (int)depth, (float)slope, &r, &p->params, "g");
+    p->f.fourier = (int)fourier;
     if (!s) s = check_params(c, &p->params);
     if (!s) s = load_psi_norm(c, h, m->category, p);
     if (n == 0) { free(frame); return s; }
