@@ -72,9 +72,12 @@ void unwrap_piece_clear(chart_piece *p)
 
 neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p)
 {
-    int from_split = p->from_split;
+    int from_split = p->from_split, net_split = p->net_split, net_head = p->net_head, net_depth = p->net_depth;
     unwrap_piece_clear(p);
     p->from_split = from_split;
+    p->net_split = net_split;
+    p->net_head = net_head;
+    p->net_depth = net_depth;
     neuv_status s = chart_submesh(m, face_chart, id, &p->sub, &p->vmap, &p->fmap);
     if (s != NEUV_OK) return s;
     p->uv = calloc((size_t)p->sub->nv * 2, sizeof(double));
@@ -127,6 +130,10 @@ static int grow_pieces(chart_piece **pieces, int *cap, int need)
  * degenerate face, simple boundary). A folded neural chart is re-flattened
  * with LSCM; a chart the classic method cannot flatten without folds is
  * split in two and both halves are flattened again. */
+/* How many times a network chart whose map crosses its own boundary is
+ * halved before its pieces go to LSCM. */
+#define NET_SPLIT_DEPTH 3
+
 static int piece_accepts(void *user, int chart, const double *corner_uv)
 {
     (void)chart;
@@ -229,7 +236,8 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
         neuv_progress("repair", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
         chart_uv_check chk;
         char why[160];
-        if (corner_uv && !p->from_split) {
+        if (corner_uv && (!p->from_split || p->net_split)) {
+            int head = p->net_split ? p->net_head : c;
             piece_uv_from_corners(p, corner_uv);
             int ok = chart_uv_check_run(p->sub, p->uv, &chk);
             if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
@@ -245,8 +253,28 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
             }
             if (!ok) p->source = CHART_SOURCE_NETWORK_FOLDED;
             if (ok || r->opts.allow_overlaps) {
-                p->net = c;
+                p->net = head;
                 p->mirrored = chk.mirrored;
+                continue;
+            }
+            if (chk.flipped == 0 && chk.degenerate == 0 && p->net_depth < NET_SPLIT_DEPTH && p->sub->nf >= 2 &&
+                splits < m->nf) {
+                /* Locally injective but its boundary crosses itself: the
+                 * halves may each be injective under the same map. */
+                int before = r->n_charts, depth = p->net_depth + 1;
+                if ((s = charts_split(m, r->face_chart, &r->n_charts, c)) != NEUV_OK) break;
+                splits++;
+                unwrap_add_repair(r, c, "the networks' map crossed the chart's own boundary (%d crossings); split "
+                                  "into %d charts, each checked under the same map", chk.boundary_crossings,
+                                  r->n_charts - before + 1);
+                if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = neuv_fail_nomem("charts"); break; }
+                for (int k = before; k <= r->n_charts; k++) {
+                    chart_piece *q = &pieces[k < r->n_charts ? k : c];
+                    q->from_split = q->net_split = 1;
+                    q->net_head = head;
+                    q->net_depth = depth;
+                }
+                c--;
                 continue;
             }
             describe_failure(why, sizeof why, &chk);
@@ -277,7 +305,8 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                           classic_name(corner_uv ? NEUV_METHOD_LSCM : classic), why, r->n_charts - before + 1);
         if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = neuv_fail_nomem("charts"); break; }
         for (int k = before; k < r->n_charts; k++) pieces[k].from_split = 1;
-        p->from_split = 1;
+        pieces[c].from_split = 1;
+        pieces[c].net_split = 0; /* the classic method's pieces stay the classic method's */
         c--; /* flatten the smaller chart that kept this id again */
     }
     *pieces_out = pieces;

@@ -99,6 +99,10 @@ typedef struct chart_piece {
     int *vmap, *fmap;
     double *uv;      /* #CV by 2 */
     int from_split;  /* made by a split: flattened by the classic method */
+    int net_split;   /* made by splitting a network chart whose map crossed its own
+                        boundary only: the networks' map is checked again on it */
+    int net_head;    /* with net_split: the network chart whose map it holds */
+    int net_depth;   /* with net_split: splits since that network chart */
     int net;         /* network chart whose map is kept, -1 otherwise */
     int mirrored;    /* chart_uv_check mirrored it */
     chart_source source;   /* where its final map came from */
@@ -116,7 +120,7 @@ neuv_status unwrap_piece_lscm_qce(chart_piece *p);
 neuv_status unwrap_keep_provenance(struct neuv_unwrap_result *r, const chart_piece *pieces);
 
 void unwrap_piece_clear(chart_piece *p);
-/* Builds chart `id` of m as a piece with zeroed UVs (keeps from_split). */
+/* Builds chart `id` of m as a piece with zeroed UVs (keeps from_split and the net_split fields). */
 neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p);
 /* Vertex refinement of a piece whose UVs pass the injectivity check,
  * counter-clockwise: first LSCM anchored to its map (flatten/lscm.h, kept
