@@ -284,6 +284,7 @@ static void apply_key(param_net_options *o, const char *kv)
     else if (KEY("solve_fold_eps")) o->solve_fold_eps = v;
     else if (KEY("solve_mips")) o->solve_mips = (int)v;
     else if (KEY("head_fourier")) o->head_fourier = (int)v;
+    else if (KEY("subdivide")) o->solve_subdivide = (int)v;
     else if (KEY("refine")) g_refine.iters = (int)v;
     else if (KEY("refine_lr")) g_refine.lr = v;
     else if (KEY("refine_iso")) g_refine.lambda_iso = v;

@@ -56,7 +56,7 @@ static void grid_build(neuv_mesh *g, int two, grid_data *gd)
     param_conformal_targets(pos, &gd->corners, gd->frame_inv, gd->w);
     gd->fchart = fchart;
     gd->d = (param_solve_data){n, nf, two ? 2 : 1, gd->x, gd->x, 3, gd->vchart, NULL, 0, 0, tri, fchart,
-                               gd->frame_inv, gd->w, 0, 0, 0};
+                               gd->frame_inv, gd->w, 0, 0, NULL, 0};
     free(map); free(pos);
 }
 
@@ -132,6 +132,32 @@ int main(void)
     double gf = param_output_solve_gradient_error(&f, &one.d, 1e-3, 40);
     printf("with the fold barrier: %.3g\n", gf);
     CHECK(gf < 1e-5);
+
+    /* The subdivided data: each face also split in four at its edge
+     * midpoints, the sub-faces carrying only the barrier. A 12x12 grid has
+     * 12·13·2 + 12·12 = 456 edges. */
+    param_solve_subdivided sub;
+    CHECK_INT(param_solve_subdivide(&one.d, &sub), NEUV_OK);
+    CHECK_INT(sub.d.nv, one.d.nv + 456);
+    CHECK_INT(sub.d.nf, 5 * one.d.nf);
+    int bad_mid = 0, bad_frame = 0;
+    for (int f = 0; f < one.d.nf; f++) {
+        const int *t = one.d.tri + 3 * f, *c0 = sub.d.tri + 3 * (one.d.nf + 4 * f);
+        CHECK_INT(sub.d.tri[3 * f], t[0]);
+        for (int q = 0; q < 3; q++)
+            bad_mid += fabs(sub.d.x[3 * c0[1] + q] - 0.5 * (one.d.x[3 * t[0] + q] + one.d.x[3 * t[1] + q])) > 1e-7;
+        /* the corner sub-face is the face at half size: twice its frame inverse */
+        for (int q = 0; q < 4; q++)
+            bad_frame += fabs(sub.d.frame_inv[4 * (one.d.nf + 4 * f) + q] - 2 * one.d.frame_inv[4 * f + q]) > 1e-4;
+        bad_frame += sub.d.face_w[one.d.nf + 4 * f] != 0;
+        bad_frame += fabs(sub.d.fold_w[one.d.nf + 4 * f + 3] - 0.25 * one.d.face_w[f]) > 1e-9;
+    }
+    CHECK_INT(bad_mid, 0);
+    CHECK_INT(bad_frame, 0);
+    double gs = param_output_solve_gradient_error(&f, &sub.d, 1e-3, 40);
+    printf("with the fold barrier on the subdivided faces: %.3g\n", gs);
+    CHECK(gs < 1e-5);
+    param_solve_subdivided_free(&sub);
     one.d.fold_weight = 0;
     one.d.fold_eps = 0;
 

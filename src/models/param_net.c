@@ -57,6 +57,7 @@ void param_net_default_options(param_net_options *o, param_preset preset)
     o->solve_fold_eps = 0.05;
     o->solve_mips = 20;
     o->head_fourier = 64;
+    o->solve_subdivide = 1;
     o->chart_heads = 1;
     if (preset == PARAM_PRESET_PAPER) {
         o->width = 464;
@@ -843,7 +844,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     rep->iters = it;
     if (o->solve_steps > 0 && o->depth >= 2) {
         param_solve_data sd = {d.nv, d.nf, n_charts, d.x, d.x, 3, d.vchart, pooled ? d.psi : d.feat, d.psi_dim,
-                               !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w, 0, 0, 0};
+                               !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w, 0, 0, NULL, 0};
         param_solve_report sr, hr;
         memset(&hr, 0, sizeof hr);
         s = param_output_solve_conformal(&model->f, &sd, o->solve_anchor, o->solve_steps, &sr);
@@ -851,10 +852,19 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
             model->heads = malloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
             if (!model->heads) s = neuv_fail_nomem("chart heads");
             else {
-                sd.fold_weight = o->solve_fold;
-                sd.fold_eps = o->solve_fold_eps;
-                sd.mips_steps = o->solve_mips;
-                s = param_output_solve_heads(&model->f, &sd, o->solve_anchor, o->solve_steps, model->heads, &hr);
+                param_solve_data hd = sd;
+                hd.fold_weight = o->solve_fold;
+                hd.fold_eps = o->solve_fold_eps;
+                hd.mips_steps = o->solve_mips;
+                param_solve_subdivided sub;
+                memset(&sub, 0, sizeof sub);
+                if (o->solve_subdivide && o->solve_fold > 0 && pooled) {
+                    s = param_solve_subdivide(&hd, &sub);
+                    if (s == NEUV_OK) hd = sub.d;
+                }
+                if (s == NEUV_OK)
+                    s = param_output_solve_heads(&model->f, &hd, o->solve_anchor, o->solve_steps, model->heads, &hr);
+                param_solve_subdivided_free(&sub);
             }
         }
         if (s == NEUV_OK) s = param_output_solve_inverse(&model->g, &model->f, model->heads, &sd);

@@ -78,6 +78,9 @@ typedef struct param_net_options {
     int solve_mips;
     /* Fourier directions the heads also read (param_mlp.h; 0: none). */
     int head_fourier;
+    /* With solve_fold: the barrier also holds on the faces split in four at
+     * their edge midpoints (param_solve_subdivide; 0: the faces only). */
+    int solve_subdivide;
     double sigma;           /* L_iso pair radius in normalized units, 0.2 */
     double radius;          /* normalized geodesic radius of every chart, 0.6 */
     int iters;              /* iteration cap */

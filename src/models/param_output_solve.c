@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "losses/param_losses.h"
 
 int param_head_size(const param_mlp *f)
 {
@@ -125,6 +126,12 @@ static void face_weights(const float *B, double wx[3], double wy[3])
     wy[0] = -(double)B[1] - B[3]; wy[1] = B[1]; wy[2] = B[3];
 }
 
+/* The fold barrier's weight on face f. */
+static double fold_weight_of(const param_solve_data *d, int f)
+{
+    return d->fold_w ? d->fold_w[f] : d->face_w[f];
+}
+
 /* Conformal energy of the block's faces and the count of faces whose UV
  * orientation disagrees with their chart's σ. */
 static double block_energy(const param_solve_data *d, const block *b, const double *uv, const int *sigma,
@@ -145,12 +152,12 @@ static double block_energy(const param_solve_data *d, const block *b, const doub
         }
         double sg = sigma[d->fchart[f]], r1 = J[0] - sg * J[3], r2 = J[1] + sg * J[2];
         e += d->face_w[f] * (r1 * r1 + r2 * r2);
-        double det = sg * (J[0] * J[3] - J[1] * J[2]);
+        double det = sg * (J[0] * J[3] - J[1] * J[2]), fw = fold_weight_of(d, f);
         if (fold_s2 && d->fold_weight > 0) {
             double s2 = fold_s2[d->fchart[f]], gap = d->fold_eps * s2 - det;
-            if (gap > 0 && s2 > 0) e += d->fold_weight * d->face_w[f] * gap * gap / s2;
+            if (gap > 0 && s2 > 0) e += d->fold_weight * fw * gap * gap / s2;
         }
-        if (d->face_w[f] > 0 && det <= 0) fl++;
+        if ((d->face_w[f] > 0 || fw > 0) && det <= 0) fl++;
     }
     if (flips) *flips = fl;
     return e;
@@ -184,8 +191,9 @@ static void fold_row(const param_solve_data *d, int f, const double *phi, int H,
         J[2] += wx[j] * uv[2 * t[j] + 1]; J[3] += wy[j] * uv[2 * t[j] + 1];
     }
     double det = sg * (J[0] * J[3] - J[1] * J[2]), gap = d->fold_eps * s2 - det;
-    if (!(gap > 0) || !(s2 > 0) || !(d->face_w[f] > 0)) return;
-    double k = sqrt(d->fold_weight * d->face_w[f] / s2), *c, *r = normal_eq_row(q, &c);
+    double fw = fold_weight_of(d, f);
+    if (!(gap > 0) || !(s2 > 0) || !(fw > 0)) return;
+    double k = sqrt(d->fold_weight * fw / s2), *c, *r = normal_eq_row(q, &c);
     int K = H + 1;
     /* r(θ) ≈ gap − k σ ∇det·(θ − θ0): row −k σ ∇det, constant gap + k σ ∇det·θ0. */
     double cst = k * gap;
@@ -211,10 +219,11 @@ static void gauss_newton_rows(const param_solve_data *d, const block *b, const d
     int K = H + 1;
     for (int k = 0; k < b->nf; k++) {
         int f = b->faces[k];
-        double w = sqrt(d->face_w[f]);
+        double w = sqrt(d->face_w[f]), sg = sigma[d->fchart[f]];
+        if (fold_s2 && d->fold_weight > 0) fold_row(d, f, phi, H, z, uv, sg, fold_s2[d->fchart[f]], q);
         if (!(w > 0)) continue;
         const int *t = d->tri + 3 * f;
-        double sg = sigma[d->fchart[f]], wx[3], wy[3], *c1, *c2;
+        double wx[3], wy[3], *c1, *c2;
         face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
         double *r1 = normal_eq_row(q, &c1), *r2 = normal_eq_row(q, &c2);
         /* r1 = ∂u/∂x − σ ∂v/∂y, r2 = ∂u/∂y + σ ∂v/∂x */
@@ -232,7 +241,6 @@ static void gauss_newton_rows(const param_solve_data *d, const block *b, const d
             *c1 += w * wx[j] * ku - sg * w * wy[j] * kv;
             *c2 += w * wy[j] * ku + sg * w * wx[j] * kv;
         }
-        if (fold_s2 && d->fold_weight > 0) fold_row(d, f, phi, H, z, uv, sg, fold_s2[d->fchart[f]], q);
     }
     anchor_rows(b, phi, H, z, uv, uv0, mv, anchor, q);
 }
@@ -277,12 +285,13 @@ static double block_energy_mips(const param_solve_data *d, const block *b, const
     double e = 0;
     for (int k = 0; k < b->nf; k++) {
         int f = b->faces[k];
-        if (!(d->face_w[f] > 0)) continue;
+        if (!(d->face_w[f] > 0) && !(fold_weight_of(d, f) > 0)) continue;
         double wx[3], wy[3], J[4];
         face_jacobian(d, f, uv, wx, wy, J);
         double sg = sigma[d->fchart[f]], r1 = J[0] - sg * J[3], r2 = J[1] + sg * J[2];
         double D = sg * (J[0] * J[3] - J[1] * J[2]);
         if (!(D > 0)) return INFINITY;
+        if (!(d->face_w[f] > 0)) continue; /* a barrier-only face */
         e += d->face_w[f] * (r1 * r1 + r2 * r2) / D;
     }
     return e;
@@ -725,4 +734,116 @@ out:
     normal_eq_free(&q);
     free(theta); free(grad);
     return worst;
+}
+
+typedef struct edge_key { int a, b, id; } edge_key;
+
+static int edge_key_cmp(const void *p, const void *q)
+{
+    const edge_key *x = p, *y = q;
+    if (x->a != y->a) return x->a < y->a ? -1 : 1;
+    if (x->b != y->b) return x->b < y->b ? -1 : 1;
+    return (x->id > y->id) - (x->id < y->id);
+}
+
+void param_solve_subdivided_free(param_solve_subdivided *sd)
+{
+    free(sd->x); free(sd->f_in); free(sd->vchart); free(sd->tri); free(sd->fchart);
+    free(sd->frame_inv); free(sd->face_w); free(sd->fold_w);
+    memset(sd, 0, sizeof *sd);
+}
+
+neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivided *out)
+{
+    memset(out, 0, sizeof *out);
+    if (d->psi_per_vertex) return neuv_fail(NEUV_ERR_INPUT, "subdivided solve data needs a pooled ψ");
+    int nv = d->nv, nf = d->nf, dim = d->f_in_dim;
+    edge_key *e = malloc(sizeof *e * 3 * (size_t)(nf > 0 ? nf : 1));
+    int *mid = malloc(sizeof(int) * 3 * (size_t)(nf > 0 ? nf : 1));
+    if (!e || !mid) { free(e); free(mid); return neuv_fail_nomem("subdivided solve data"); }
+    for (int f = 0; f < nf; f++)
+        for (int k = 0; k < 3; k++) {
+            int a = d->tri[3 * f + k], b = d->tri[3 * f + (k + 1) % 3];
+            e[3 * f + k] = (edge_key){a < b ? a : b, a < b ? b : a, 3 * f + k};
+        }
+    qsort(e, 3 * (size_t)nf, sizeof *e, edge_key_cmp);
+    int ne = 0;
+    for (int i = 0; i < 3 * nf; i++) {
+        if (i > 0 && (e[i].a != e[i - 1].a || e[i].b != e[i - 1].b)) ne++;
+        mid[e[i].id] = nv + ne; /* the midpoint of face id/3's edge id%3 */
+    }
+    if (nf > 0) ne++;
+    int NV = nv + ne, NF = 5 * nf;
+    out->x = malloc(sizeof(float) * 3 * (size_t)NV);
+    out->f_in = d->f_in == d->x ? NULL : malloc(sizeof(float) * (size_t)dim * NV);
+    out->vchart = malloc(sizeof(int) * (size_t)NV);
+    out->tri = malloc(sizeof(int) * 3 * (size_t)NF);
+    out->fchart = malloc(sizeof(int) * (size_t)NF);
+    out->frame_inv = malloc(sizeof(float) * 4 * (size_t)NF);
+    out->face_w = malloc(sizeof(float) * (size_t)NF);
+    out->fold_w = malloc(sizeof(float) * (size_t)NF);
+    double *pos = malloc(sizeof(double) * 3 * (size_t)NV);
+    neuv_status s = NEUV_OK;
+    if (!out->x || (d->f_in != d->x && !out->f_in) || !out->vchart || !out->tri || !out->fchart || !out->frame_inv ||
+        !out->face_w || !out->fold_w || !pos) {
+        s = neuv_fail_nomem("subdivided solve data");
+        goto done;
+    }
+    memcpy(out->x, d->x, sizeof(float) * 3 * (size_t)nv);
+    if (out->f_in) memcpy(out->f_in, d->f_in, sizeof(float) * (size_t)dim * nv);
+    memcpy(out->vchart, d->vchart, sizeof(int) * (size_t)nv);
+    for (int i = 0; i < 3 * nf; i++) {
+        int m = mid[i], f = i / 3, a = d->tri[i], b = d->tri[3 * f + (i % 3 + 1) % 3];
+        for (int q = 0; q < 3; q++) out->x[3 * m + q] = 0.5f * (d->x[3 * a + q] + d->x[3 * b + q]);
+        if (out->f_in)
+            for (int q = 0; q < dim; q++)
+                out->f_in[(size_t)m * dim + q] = 0.5f * (d->f_in[(size_t)a * dim + q] + d->f_in[(size_t)b * dim + q]);
+        out->vchart[m] = d->vchart[a];
+    }
+    for (int v = 0; v < NV; v++)
+        for (int q = 0; q < 3; q++) pos[3 * v + q] = out->x[3 * v + q];
+    memcpy(out->tri, d->tri, sizeof(int) * 3 * (size_t)nf);
+    memcpy(out->fchart, d->fchart, sizeof(int) * (size_t)nf);
+    memcpy(out->frame_inv, d->frame_inv, sizeof(float) * 4 * (size_t)nf);
+    memcpy(out->face_w, d->face_w, sizeof(float) * (size_t)nf);
+    memcpy(out->fold_w, d->fold_w ? d->fold_w : d->face_w, sizeof(float) * (size_t)nf);
+    for (int f = 0; f < nf; f++) {
+        const int *t = d->tri + 3 * f;
+        int m01 = mid[3 * f], m12 = mid[3 * f + 1], m20 = mid[3 * f + 2];
+        int sub[4][3] = {{t[0], m01, m20}, {m01, t[1], m12}, {m20, m12, t[2]}, {m01, m12, m20}};
+        for (int k = 0; k < 4; k++) {
+            int g = nf + 4 * f + k;
+            memcpy(out->tri + 3 * g, sub[k], sizeof sub[k]);
+            out->fchart[g] = d->fchart[f];
+            out->face_w[g] = 0;
+            out->fold_w[g] = 0.25f * (d->fold_w ? d->fold_w[f] : d->face_w[f]);
+        }
+    }
+    {
+        param_corners c;
+        float *w = malloc(sizeof(float) * 4 * (size_t)(nf > 0 ? nf : 1));
+        if (!w || param_corners_build(out->tri + 3 * (size_t)nf, 4 * nf, &c) != NEUV_OK) {
+            free(w);
+            s = neuv_fail_nomem("subdivided solve data");
+            goto done;
+        }
+        param_conformal_targets(pos, &c, out->frame_inv + 4 * (size_t)nf, w);
+        param_corners_free(&c);
+        free(w);
+    }
+    out->d = *d;
+    out->d.nv = NV;
+    out->d.nf = NF;
+    out->d.x = out->x;
+    out->d.f_in = out->f_in ? out->f_in : out->x;
+    out->d.vchart = out->vchart;
+    out->d.tri = out->tri;
+    out->d.fchart = out->fchart;
+    out->d.frame_inv = out->frame_inv;
+    out->d.face_w = out->face_w;
+    out->d.fold_w = out->fold_w;
+done:
+    free(e); free(mid); free(pos);
+    if (s != NEUV_OK) param_solve_subdivided_free(out);
+    return s;
 }

@@ -51,6 +51,8 @@ typedef struct param_solve_data {
      * the faces where σ det J_f < ε s̄², s̄² the chart's area-weighted mean
      * |det J| in uv⁰ and ε = fold_eps. */
     double fold_weight, fold_eps;
+    const float *fold_w;     /* nf: each face's weight in the barrier (NULL: face_w); a face
+                                with face_w 0 and fold_w > 0 carries the barrier only */
     /* Then, on a chart the map leaves unfolded, Gauss-Newton steps on the
      * scale-free conformal energy 2 Σ_f w_f (MIPS_f − 1), MIPS = (s1/s2 +
      * s2/s1)/2, whose barrier at det J = 0 keeps every face unfolded
@@ -63,6 +65,23 @@ typedef struct param_solve_report {
     int steps;                          /* shared solve: Gauss-Newton steps kept */
     int heads_improved;                 /* per-chart solve: charts whose head moved from the shared one */
 } param_solve_report;
+
+/* The data with every face also split in four at its edge midpoints: each
+ * midpoint becomes a vertex (x and the inputs the mean of the edge's ends,
+ * the face's chart), and the four sub-faces carry the fold barrier only
+ * (face_w 0, fold_w a quarter of the face's), so that a solve keeps the map
+ * unfolded between the vertices too, where a finer triangulation of the
+ * surface has its own. The original vertices and faces come first, in order.
+ * Needs a pooled ψ. Returns NEUV_OK, NEUV_ERR_INPUT or NEUV_ERR_NOMEM (free
+ * with param_solve_subdivided_free; out->d views its arrays). */
+typedef struct param_solve_subdivided {
+    param_solve_data d;
+    float *x, *f_in, *frame_inv, *face_w, *fold_w;
+    int *vchart, *tri, *fchart;
+} param_solve_subdivided;
+
+neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivided *out);
+void param_solve_subdivided_free(param_solve_subdivided *sd);
 
 /* Floats per head: (width + 1) x 2, u's weights and bias then v's. */
 int param_head_size(const param_mlp *f);
