@@ -386,12 +386,13 @@ static double uv_convexity(const neuv_mesh *sub, const double *uv)
     return hull_area > 0 ? fabs(area) / hull_area : 1.0;
 }
 
-static double g_convexity; /* last judged chart (set by chart_lscm_judge) */
-
+/* LSCM's qce_mean and flipped faces on chart `id`; with `crossings`, also
+ * its boundary self-crossings and (convexity, when not NULL) the share of
+ * its UV footprint's convex hull that the footprint fills. */
 static neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, int id, double *qce_mean,
-                                    int *flipped, int *crossings)
+                                    int *flipped, int *crossings, double *convexity)
 {
-    g_convexity = 1.0;
+    if (convexity) *convexity = 1.0;
     *qce_mean = INFINITY;
     *flipped = 0;
     if (crossings) *crossings = 0;
@@ -420,7 +421,9 @@ static neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, i
             int ok = chart_uv_check_run(sub, uv, &chk);
             if (ok < 0) st = NEUV_ERR_NOMEM;
             else *crossings = chk.boundary_crossings;
-            if (!st && (g_convexity = uv_convexity(sub, uv)) < 0) st = NEUV_ERR_NOMEM;
+            double cvx = convexity ? uv_convexity(sub, uv) : 1.0;
+            if (!st && cvx < 0) st = NEUV_ERR_NOMEM;
+            if (!st && convexity) *convexity = cvx;
         }
         if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return neuv_fail_nomem("chart check"); }
     }
@@ -432,7 +435,7 @@ static neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, i
 neuv_status patchnet_chart_lscm_quality(const neuv_mesh *m, const int *face_chart, int id, double *qce_mean,
                                         int *flipped)
 {
-    return chart_lscm_judge(m, face_chart, id, qce_mean, flipped, NULL);
+    return chart_lscm_judge(m, face_chart, id, qce_mean, flipped, NULL, NULL);
 }
 
 /* Grows a per-chart array to n entries (new entries: dirty). */
@@ -496,9 +499,10 @@ static neuv_status merge_charts(const neuv_mesh *m, double limit, double min_cvx
             int disk = chart_is_disk(m, face_chart, a);
             double qa = INFINITY;
             int fl = 1, cross = 1;
+            double cvx = 0;
             if (disk < 0) st = neuv_fail_nomem("chart merge");
-            else if (disk) st = chart_lscm_judge(m, face_chart, a, &qa, &fl, &cross);
-            if (!st && disk == 1 && qa < limit && fl == 0 && cross == 0 && g_convexity >= min_cvx) {
+            else if (disk) st = chart_lscm_judge(m, face_chart, a, &qa, &fl, &cross, &cvx);
+            if (!st && disk == 1 && qa < limit && fl == 0 && cross == 0 && cvx >= min_cvx) {
                 q[a] = qa;
                 flip[a] = 0;
                 gone[b] = 1;
@@ -540,7 +544,7 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
         for (int c = 0; c < *n_charts && !st; c++)
             if (dirty[c]) {
                 int cross = 0;
-                st = chart_lscm_judge(m, face_chart, c, &q[c], &flip[c], &cross);
+                st = chart_lscm_judge(m, face_chart, c, &q[c], &flip[c], &cross, NULL);
                 /* A self-overlapping boundary fails like a flip. */
                 flip[c] += cross;
                 dirty[c] = 0;
