@@ -54,6 +54,29 @@ cmp -s "$TMP/u.obj" "$TMP/u2.obj" && ok || bad "category inference is not determ
   --threads 1 --quiet && ok || bad "unwrap --finetune failed"
 unwrap_check "$TMP/f.obj" "$TMP/f.json" 20 finetune
 
+# The networks' own map on the unseen member (--refine 0): with a head per
+# chart solved on this shape (the default) against the shared output layer.
+for mode in heads shared; do
+  extra=(); [ $mode = shared ] && extra=(--shared-layer)
+  "$NEUV" unwrap "$TMP/m30.obj" --model "$TMP/c.neuv" --refine 0 "${extra[@]}" -o "$TMP/n-$mode.obj" \
+    --report "$TMP/n-$mode.json" --threads 1 --quiet && ok || bad "unwrap --refine 0 ($mode) failed"
+done
+"$PY" - "$TMP/n-heads.json" "$TMP/n-shared.json" <<'PYEOF' && ok || bad "heads solved on the unseen shape"
+import json, sys
+h, s = (json.load(open(p)) for p in sys.argv[1:3])
+assert h["model"]["output_layer"] == "a head per chart, solved on this shape", h["model"]
+assert s["model"]["output_layer"] == "shared", s["model"]
+def ratio(r):
+    p = r["provenance"]
+    return p["network_area_fraction"], p["network_qce_mean"] / p["lscm_qce_mean_same_charts"]
+(ha, hr), (sa, sr) = ratio(h), ratio(s)
+print(f"heads: network area {ha:.3f}, qce ratio to LSCM {hr:.4f}; shared layer: {sa:.3f}, {sr:.4f}")
+# measured (150 training steps, 4 members): heads 0.945, 1.0124; shared layer 0.081, 1.3796
+assert ha >= 0.9 and hr <= 1.03, (ha, hr)
+assert ha > sa, (ha, sa)
+assert hr < sr, (hr, sr)
+PYEOF
+
 expect_2() {
   local label="$1"; shift
   "$@" >/dev/null 2>"$TMP/err"; local rc=$?
@@ -74,6 +97,9 @@ expect_2 "check-inference with a category model" "$NEUV" unwrap "$TMP/m30.obj" -
   --check-inference -o "$TMP/x.obj"
 expect_2 "negative finetune" "$NEUV" unwrap "$TMP/m30.obj" --model "$TMP/c.neuv" --finetune -1 -o "$TMP/x.obj"
 expect_2 "finetune without a model" "$NEUV" unwrap "$TMP/m30.obj" --finetune 5 -o "$TMP/x.obj"
+expect_2 "shared-layer without a model" "$NEUV" unwrap "$TMP/m30.obj" --shared-layer -o "$TMP/x.obj"
+expect_2 "shared-layer with finetune" "$NEUV" unwrap "$TMP/m30.obj" --model "$TMP/c.neuv" --shared-layer \
+  --finetune 5 -o "$TMP/x.obj"
 [ ! -e "$TMP/x.obj" ] && ok || bad "a failed unwrap left $TMP/x.obj"
 expect_2 "shape without member" "$NEUV" shape bent-capsule -o "$TMP/s.obj"
 expect_2 "shape unknown" "$NEUV" shape teapot -o "$TMP/s.obj"

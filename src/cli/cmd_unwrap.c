@@ -14,8 +14,8 @@ static const char *usage_text =
     "                   [--method neural|lscm|harmonic] [--charts auto|K] [--max-distortion X]\n"
     "                   [--preset fast|paper] [--iters N] [--refine N] [--seed S] [--threads T]\n"
     "                   [--resolution PX] [--padding PX] [--allow-overlaps] [--no-cache] [--quiet]\n"
-    "                   [--save-model M.neuv] [--model M.neuv [--finetune N] [--check-inference] [--lscm-baseline]]\n"
-    "                   [--train-faces N]\n";
+    "                   [--save-model M.neuv] [--model M.neuv [--finetune N] [--check-inference] [--lscm-baseline]\n"
+    "                   [--shared-layer]] [--train-faces N]\n";
 
 /* Above this many faces the networks train on a simplified copy and the model
  * is applied to the full mesh. Measured (bench/bench_train_faces.sh,
@@ -75,6 +75,7 @@ int cmd_unwrap(int argc, char **argv)
         if (cli_arg_int(argc, argv, &i, "--train-faces", &job.train_faces, &bad)) continue;
         if (!strcmp(argv[i], "--check-inference")) { job.check_inference = 1; continue; }
         if (!strcmp(argv[i], "--lscm-baseline")) { job.lscm_baseline = 1; continue; }
+        if (!strcmp(argv[i], "--shared-layer")) { job.shared_layer = 1; continue; }
         if (!strcmp(argv[i], "--allow-overlaps")) { o.allow_overlaps = 1; continue; }
         if (!strcmp(argv[i], "--no-cache")) { o.use_cache = 0; continue; }
         if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) { fputs(usage_text, stdout); return 0; }
@@ -112,6 +113,7 @@ int cmd_unwrap(int argc, char **argv)
     job.finetune = finetune;
     if (!job.model && job.check_inference) return cli_error(NULL, "--check-inference needs --model");
     if (!job.model && job.lscm_baseline) return cli_error(NULL, "--lscm-baseline needs --model");
+    if (!job.model && job.shared_layer) return cli_error(NULL, "--shared-layer needs --model");
     if (job.model && (method || preset || charts || o.iters || seed >= 0))
         return cli_error(job.model, "--model applies a saved model: --method, --preset, --charts, --iters and --seed "
                                     "come from the model");

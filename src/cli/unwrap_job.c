@@ -28,10 +28,12 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
             if (job->check_inference) {
                 s = neuv_fail(NEUV_ERR_INPUT, "--check-inference needs a surface model, not a category model");
                 what = job->model;
-            } else s = unwrap_with_category(mesh, md, opts, job->finetune, &r);
-        } else if (job->finetune > 0 || job->refine >= 0) {
-            s = neuv_fail(NEUV_ERR_INPUT, "a surface model is applied by inference only: --finetune and --refine "
-                                          "apply to category models (neuv train)");
+            } else if (job->shared_layer && job->finetune > 0) {
+                s = neuv_fail(NEUV_ERR_INPUT, "--shared-layer is for inference; --finetune trains the networks");
+            } else s = unwrap_with_category(mesh, md, opts, job->finetune, job->shared_layer, &r);
+        } else if (job->finetune > 0 || job->refine >= 0 || job->shared_layer) {
+            s = neuv_fail(NEUV_ERR_INPUT, "a surface model is applied by inference only: --finetune, --refine and "
+                                          "--shared-layer apply to category models (neuv train)");
             what = job->model;
         } else {
             unwrap_apply_options ao = {opts->threads, opts->use_cache, job->check_inference, 0, job->lscm_baseline};

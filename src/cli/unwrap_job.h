@@ -16,6 +16,7 @@ typedef struct unwrap_job {
     const char *model;        /* --model path or NULL: apply instead of training */
     int train_faces;          /* > 0: train on a simplified copy above this many faces */
     int check_inference;      /* --check-inference (with --model) */
+    int shared_layer;         /* --shared-layer (category model): no per-chart heads solved at inference */
     int lscm_baseline;        /* --lscm-baseline (with --model): the model's charts flattened by LSCM */
     int finetune;             /* --finetune N (with a category --model) */
     int refine;               /* --refine N with a category --model; -1: the model's */

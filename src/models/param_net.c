@@ -477,7 +477,7 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
         d->target = malloc((size_t)nv * 2 * sizeof(float));
         if (!d->target) return neuv_fail_nomem("warm-start targets");
     }
-    if (!skip_pairs && o->solve_steps > 0) {
+    if ((!skip_pairs || o->infer_heads) && o->solve_steps > 0) {
         d->frame_inv = malloc((size_t)m->nf * 4 * sizeof(float));
         d->conf_w = malloc((size_t)m->nf * sizeof(float));
         if (!d->frame_inv || !d->conf_w) return neuv_fail_nomem("conformal targets");
@@ -901,8 +901,26 @@ done:
     return s;
 }
 
+/* A head per chart of `d` (charts the model never saw), solved as in
+ * training: the shared output layer, then the fold barrier (on the faces
+ * split in four too) and the scale-free energy, over the model's features. */
+static neuv_status solve_new_heads(const param_net_model *model, const train_data *d, const param_net_options *o,
+                                   float *heads)
+{
+    param_solve_data sd = {d->nv, d->nf, d->n_charts, d->x, d->x, 3, d->vchart, d->psi, d->psi_dim, 0, d->tri,
+                           d->fchart, d->frame_inv, d->conf_w, o->solve_fold, o->solve_fold_eps, NULL, o->solve_mips};
+    param_solve_subdivided sub;
+    memset(&sub, 0, sizeof sub);
+    neuv_status s = NEUV_OK;
+    if (o->solve_subdivide && o->solve_fold > 0 && (s = param_solve_subdivide(&sd, &sub)) == NEUV_OK) sd = sub.d;
+    if (s == NEUV_OK) s = param_output_solve_heads(&model->f, &sd, o->solve_anchor, o->solve_steps, heads, NULL);
+    param_solve_subdivided_free(&sub);
+    return s;
+}
+
 neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, const int *face_chart, int n_charts,
-                            const float *vertex_features, int feature_dim, double *corner_uv, param_net_report *rep)
+                            const float *vertex_features, int feature_dim, int solve_heads, double *corner_uv,
+                            param_net_report *rep)
 {
     param_net_report local;
     if (!rep) rep = &local;
@@ -918,6 +936,7 @@ neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, co
     param_net_default_options(&o, PARAM_PRESET_FAST);
     o.width = model->f.width;
     o.depth = model->f.depth;
+    o.infer_heads = solve_heads && model->f.depth >= 2;
     neuv_status s = check_input(m, face_chart, n_charts, vertex_features, feature_dim, &o, corner_uv);
     if (s != NEUV_OK) return s;
     double t0 = now_seconds();
@@ -930,10 +949,19 @@ neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, co
         ctx = nn_ctx_create(0);
         if (!ctx) s = neuv_fail_nomem("parameterization inference");
     }
-    /* Charts the model never saw: the shared output layer, not its own charts' heads. */
+    /* Charts the model never saw: the shared output layer, not its own
+     * charts' heads; or heads solved for these charts. */
     double *gain = s == NEUV_OK ? malloc((size_t)n_charts * sizeof(double)) : NULL;
     if (s == NEUV_OK && !gain) s = neuv_fail_nomem("chart scale");
-    if (s == NEUV_OK) s = map_vertices(ctx, model, &d, 0, mirror, gain, corner_uv, &rep->flipped, &rep->cycle_rms);
+    param_net_model with = *model;
+    with.heads = NULL;
+    if (s == NEUV_OK && o.infer_heads) {
+        with.heads = malloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
+        s = with.heads ? solve_new_heads(model, &d, &o, with.heads) : neuv_fail_nomem("chart heads");
+    }
+    if (s == NEUV_OK)
+        s = map_vertices(ctx, &with, &d, with.heads != NULL, mirror, gain, corner_uv, &rep->flipped, &rep->cycle_rms);
+    free(with.heads);
     free(gain);
     nn_ctx_free(ctx);
     train_data_free(&d);

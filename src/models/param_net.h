@@ -78,6 +78,8 @@ typedef struct param_net_options {
     int solve_mips;
     /* Fourier directions the heads also read (param_mlp.h; 0: none). */
     int head_fourier;
+    /* param_net_infer builds the conformal targets for solving heads. */
+    int infer_heads;
     /* With solve_fold: the barrier also holds on the faces split in four at
      * their edge midpoints (param_solve_subdivide; 0: the faces only). */
     int solve_subdivide;
@@ -173,14 +175,19 @@ void param_net_model_free(param_net_model *model);
  * issue 8): each chart is normalized as in training (centre, geodesic
  * radius, frame), its ψ pooled from vertex_features and standardized with
  * the model's psi_shift / psi_mul, and MLP_f evaluated at its vertices; each
- * chart is then turned counter-clockwise.
+ * chart is then turned counter-clockwise. With solve_heads, each chart gets
+ * its own output layer over the model's features, solved on its triangles
+ * as training solves the heads of its charts (param_output_solve.h: fold
+ * barrier, scale-free energy) — an auto-decoder's inference; without, the
+ * shared output layer maps every chart.
  * Inputs:  as param_net_flatten (vertex_features: the same kind as in training)
  * Outputs: corner_uv #F by 3 by 2, as param_net_flatten; rep (may be NULL):
  *          flipped, cycle_rms, seconds
  * Returns NEUV_OK, NEUV_ERR_INPUT (no standardization in the model, ψ size
  * mismatch, bad charts), NEUV_ERR_NOMEM or NEUV_ERR_INTERNAL. */
 neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, const int *face_chart, int n_charts,
-                            const float *vertex_features, int feature_dim, double *corner_uv, param_net_report *rep);
+                            const float *vertex_features, int feature_dim, int solve_heads, double *corner_uv,
+                            param_net_report *rep);
 
 /* UVs of surface points of chart `chart_id` by inference (pooled ψ only: a
  * per-vertex model needs each point's features).

@@ -479,7 +479,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
         param_net_report pr;
         memset(&pr, 0, sizeof pr);
         if (category && finetune == 0) {
-            s = param_net_infer(category->param, m, r->face_chart, r->n_charts, features, feature_dim, corner_uv, &pr);
+            s = param_net_infer(category->param, m, r->face_chart, r->n_charts, features, feature_dim, !r->model.shared_layer, corner_uv, &pr);
         } else {
             if (category) { /* fine-tuning: the model's networks, trained `finetune` more steps */
                 pp.width = category->param->f.width;
@@ -563,7 +563,7 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
 }
 
 neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *category, const neuv_unwrap_options *opts,
-                                 int finetune, neuv_unwrap_result **out)
+                                 int finetune, int shared_layer, neuv_unwrap_result **out)
 {
     *out = NULL;
     if (!mesh || mesh->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
@@ -589,6 +589,7 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
     r->model.used = 1;
     r->model.category = 1;
     r->model.finetune = finetune;
+    r->model.shared_layer = shared_layer;
     neuv_status s = run_pipeline(r, mesh, 0, category, finetune);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     r->model.network_charts = r->neural_charts;

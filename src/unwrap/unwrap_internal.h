@@ -83,6 +83,8 @@ struct neuv_unwrap_result {
         double label_agreement;   /* -1, or PatchNet inference vs stored labels (--check-inference) */
         int category;             /* 1: a category model unwrapped this (unseen) shape */
         int finetune;             /* category: training steps from the model's weights (0: inference only) */
+        int shared_layer;         /* category inference: 1, the shared output layer maps every chart; 0, a
+                                     head per chart solved on this shape (param_net_infer) */
     } model;
 };
 
@@ -142,12 +144,15 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
 
 /* The pipeline on a shape a category model (unwrap_model.h, category = 1)
  * was not trained on: PatchNet charts and the networks' map by inference
- * (param_net_infer), or with finetune > 0 that many training steps from the
- * model's weights; then the same repair, refinement, packing and metrics.
+ * (param_net_infer: a head per chart solved on this shape, or with
+ * shared_layer the model's shared output layer), or with finetune > 0 that
+ * many training steps from the model's weights; then the same repair,
+ * refinement, packing and metrics.
  * Preset, seed, refinement, resolution and padding come from the model;
  * threads, use_cache and allow_overlaps from opts (may be NULL). */
 struct unwrap_model;
 neuv_status unwrap_with_category(const neuv_mesh *mesh, const struct unwrap_model *category,
-                                 const neuv_unwrap_options *opts, int finetune, neuv_unwrap_result **out);
+                                 const neuv_unwrap_options *opts, int finetune, int shared_layer,
+                                 neuv_unwrap_result **out);
 
 #endif

@@ -173,6 +173,9 @@ static void write_category_model(json_writer *w, const struct neuv_unwrap_result
     json_key(w, "charts_from"); json_string(w, "PatchNet inference on this shape");
     json_key(w, "network_charts"); json_int(w, r->model.network_charts);
     json_key(w, "finetune_steps"); json_int(w, r->model.finetune);
+    json_key(w, "output_layer");
+    json_string(w, r->model.finetune > 0 ? "heads solved after fine-tuning"
+                   : r->model.shared_layer ? "shared" : "a head per chart, solved on this shape");
     json_key(w, "inference_seconds"); json_number(w, r->model.inference_seconds);
 }
 
