@@ -2,6 +2,7 @@
 #include "check.h"
 
 #include "mesh/edge_map.h"
+#include "mesh/blob_family.h"
 #include "mesh/shape_family.h"
 #include "mesh/shapes.h"
 #include "mesh/signed_volume.h"
@@ -209,6 +210,52 @@ int main(void)
         }
         p.radius = -1;
         CHECK(shape_bent_capsule(&p) == NULL);
+    }
+
+    /* Blobs: without bumps and stretch, the unit icosphere; a single bump of
+     * height h raises its centre to 1 + h exactly; members are closed genus-0
+     * surfaces, each one reproducible and different from the next. */
+    {
+        blob_params p = {0};
+        p.level = 2;
+        for (int q = 0; q < 3; q++) { p.stretch[q] = 1; p.turn[q] = 0.3 * (q + 1); }
+        neuv_mesh *b = shape_blob(&p);
+        CHECK(b != NULL);
+        double worst = 0;
+        for (int v = 0; b && v < b->nv; v++)
+            worst = fmax(worst, fabs(sqrt(b->pos[3 * v] * b->pos[3 * v] + b->pos[3 * v + 1] * b->pos[3 * v + 1] +
+                                          b->pos[3 * v + 2] * b->pos[3 * v + 2]) - 1));
+        CHECK(worst < 1e-12);
+        mesh_free(b);
+        /* one bump at the icosphere's vertex (0, 0, 1)·(normalized) direction of vertex 0 */
+        b = shape_icosphere(2, 1.0);
+        p.bumps = 1;
+        for (int q = 0; q < 3; q++) p.dir[0][q] = b->pos[q];
+        p.height[0] = 0.4;
+        p.width[0] = 0.5;
+        mesh_free(b);
+        b = shape_blob(&p);
+        CHECK(b != NULL);
+        if (b) CHECK_NEAR(sqrt(b->pos[0] * b->pos[0] + b->pos[1] * b->pos[1] + b->pos[2] * b->pos[2]), 1.4, 1e-12);
+        mesh_free(b);
+        p.width[0] = 0;
+        CHECK(shape_blob(&p) == NULL);
+        for (int i = 0; i < 12; i++) {
+            blob_family_params((uint64_t)i, &p);
+            CHECK(p.bumps >= 3 && p.bumps <= BLOB_MAX_BUMPS && (p.level == 3 || p.level == 4));
+            for (int q = 0; q < 3; q++) CHECK(p.stretch[q] >= 0.6 && p.stretch[q] <= 1.5);
+            m = shape_blob_family((uint64_t)i);
+            neuv_mesh *again = shape_blob_family((uint64_t)i), *next = shape_blob_family((uint64_t)i + 1);
+            CHECK(m && again && next);
+            if (!m || !again || !next) { mesh_free(m); mesh_free(again); mesh_free(next); continue; }
+            CHECK(m->nv == again->nv && !memcmp(m->pos, again->pos, sizeof(double) * 3 * (size_t)m->nv));
+            CHECK(m->nv != next->nv || memcmp(m->pos, next->pos, sizeof(double) * 3 * (size_t)m->nv) != 0);
+            t = topo(m);
+            CHECK_INT(t.genus, 0); CHECK(t.closed);
+            CHECK(oriented_manifold(m, 1)); CHECK(min_area_positive(m));
+            CHECK(mesh_signed_volume(m, NULL, 0) > 0);
+            mesh_free(m); mesh_free(again); mesh_free(next);
+        }
     }
 
     CHECK(shape_icosphere(-1, 1) == NULL);
