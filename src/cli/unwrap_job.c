@@ -28,6 +28,11 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
             if (job->check_inference) {
                 s = neuv_fail(NEUV_ERR_INPUT, "--check-inference needs a surface model, not a category model");
                 what = job->model;
+            } else if (job->save_model) {
+                s = neuv_fail(NEUV_ERR_INPUT, "--save-model with a category model would write that model again, "
+                                              "not this shape's (nor --finetune's weights); unwrap without --model to "
+                                              "save a model of this shape");
+                what = job->model;
             } else if (job->shared_layer && job->finetune > 0) {
                 s = neuv_fail(NEUV_ERR_INPUT, "--shared-layer is for inference; --finetune trains the networks");
             } else s = unwrap_with_category(mesh, md, opts, job->finetune, job->shared_layer, &r);
