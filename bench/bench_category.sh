@@ -5,19 +5,20 @@
 # inference (`neuv unwrap --model`), and by per-shape training (`neuv unwrap`)
 # for comparison. Both with the vertex refinement off (--refine 0: the
 # networks' map itself, plus repairs) and with the defaults (refinement on).
-# Usage: bench/bench_category.sh BUILD_DIR [OUT_DIR] [extra neuv train options]
+# FAMILY=blob runs the same on the second family (`neuv shape blob`).
+# Usage: [FAMILY=bent-capsule|blob] bench/bench_category.sh BUILD_DIR [OUT_DIR] [extra neuv train options]
 set -eu
-B="$1"; OUT="${2:-/tmp/bench_category}"; NEUV="$B/neuv"
+B="$1"; OUT="${2:-/tmp/bench_category}"; NEUV="$B/neuv"; FAMILY="${FAMILY:-bent-capsule}"
 shift; [ $# -gt 0 ] && shift
 mkdir -p "$OUT"
-for i in $(seq 0 24); do "$NEUV" shape bent-capsule --member "$i" -o "$OUT/m$i.obj" --quiet; done
+for i in $(seq 0 24); do "$NEUV" shape "$FAMILY" --member "$i" -o "$OUT/m$i.obj" --quiet; done
 train=()
 for i in $(seq 0 19); do train+=("$OUT/m$i.obj"); done
-"$NEUV" train -o "$OUT/capsules.neuv" "${train[@]}" --report "$OUT/train.json" --quiet "$@"
+"$NEUV" train -o "$OUT/family.neuv" "${train[@]}" --report "$OUT/train.json" --quiet "$@"
 for i in $(seq 20 24); do
   for r in 0 default; do
     ropt=(); [ "$r" = 0 ] && ropt=(--refine 0)
-    "$NEUV" unwrap "$OUT/m$i.obj" --model "$OUT/capsules.neuv" "${ropt[@]}" -o "$OUT/cat-$r-$i.obj" \
+    "$NEUV" unwrap "$OUT/m$i.obj" --model "$OUT/family.neuv" "${ropt[@]}" -o "$OUT/cat-$r-$i.obj" \
       --report "$OUT/cat-$r-$i.json" --quiet
     "$NEUV" unwrap "$OUT/m$i.obj" "${ropt[@]}" -o "$OUT/own-$r-$i.obj" --report "$OUT/own-$r-$i.json" --quiet
   done
