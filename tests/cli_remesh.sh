@@ -49,6 +49,8 @@ GF=$(faces "$TMP/grid.obj")
 # Local fixture: subdivision counts, compare with itself and with a jittered subdivision.
 if "$NEUV" remesh "$TMP/grid.obj" -o "$TMP/g2.obj" --subdivide 2 --quiet >/dev/null 2>"$TMP/err" &&
    [ "$(faces "$TMP/g2.obj")" -eq $((GF * 16)) ]; then ok; else bad "grid --subdivide 2: $(cat "$TMP/err")"; fi
+out=$("$NEUV" remesh "$TMP/grid.obj" -o "$TMP/gq.obj" --subdivide 1 --jitter --quiet 2>&1)
+if [ $? -eq 0 ] && [ -z "$out" ] && [ -s "$TMP/gq.obj" ]; then ok; else bad "remesh --quiet printed: $out"; fi
 if "$NEUV" remesh "$TMP/grid.obj" -o "$TMP/gl.obj" --subdivide 1 --loop >/dev/null 2>"$TMP/err" &&
    [ "$(faces "$TMP/gl.obj")" -eq $((GF * 4)) ]; then ok; else bad "grid --subdivide 1 --loop: $(cat "$TMP/err")"; fi
 if "$NEUV" remesh "$TMP/grid.obj" -o "$TMP/gj.obj" --subdivide 1 --jitter --seed 3 >/dev/null 2>"$TMP/err" &&

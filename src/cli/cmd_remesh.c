@@ -69,11 +69,11 @@ int cmd_remesh(int argc, char **argv)
     int rc = cli_load_clean(in, &m, &rep);
     if (rc) return rc;
     neuv_status st;
-    printf("%s: %d vertices, %d faces%s\n", in, m->nv, m->nf, m->nuv > 0 ? ", with UVs" : "");
+    if (!cli_opts.quiet) printf("%s: %d vertices, %d faces%s\n", in, m->nv, m->nf, m->nuv > 0 ? ", with UVs" : "");
     if (have_simplify) {
         neuv_mesh *s;
         if ((st = mesh_simplify(m, ratio, &s))) { mesh_free(m); return cli_fail(in, st); }
-        printf("  simplify %g: %d -> %d faces (target %.0f)\n", ratio, m->nf, s->nf, ratio * m->nf);
+        if (!cli_opts.quiet) printf("  simplify %g: %d -> %d faces (target %.0f)\n", ratio, m->nf, s->nf, ratio * m->nf);
         mesh_free(m);
         m = s;
     }
@@ -83,7 +83,7 @@ int cmd_remesh(int argc, char **argv)
             mesh_free(m);
             return cli_fail(in, st);
         }
-        printf("  subdivide %d (%s): %d -> %d faces\n", rounds, loop ? "loop" : "midpoint", m->nf, s->nf);
+        if (!cli_opts.quiet) printf("  subdivide %d (%s): %d -> %d faces\n", rounds, loop ? "loop" : "midpoint", m->nf, s->nf);
         mesh_free(m);
         m = s;
     }
@@ -102,7 +102,7 @@ int cmd_remesh(int argc, char **argv)
         char target[64] = "";
         if (have_faces) snprintf(target, sizeof target, " (target %d, %d round%s)", target_faces, ir.rounds,
                                  ir.rounds == 1 ? "" : "s");
-        printf("  isotropic: %d -> %d faces%s, edge length %.4g, %d feature edges kept (%d in the input), "
+        if (!cli_opts.quiet) printf("  isotropic: %d -> %d faces%s, edge length %.4g, %d feature edges kept (%d in the input), "
                "max distance to the input %.2g of the bounding-box diagonal\n", ir.faces_in, ir.faces_out, target,
                ir.edge_length, ir.feature_edges_out, ir.feature_edges_in, diag > 0 ? ir.max_distance / diag : 0.0);
         mesh_free(m);
@@ -111,12 +111,12 @@ int cmd_remesh(int argc, char **argv)
     if (jitter) {
         jitter_report jr;
         if ((st = mesh_jitter(m, (uint64_t)(uint32_t)seed, NULL, &jr))) { mesh_free(m); return cli_fail(in, st); }
-        printf("  jitter (seed %d): %d vertices moved, %d slid along the boundary, %d kept, %d edges flipped, "
+        if (!cli_opts.quiet) printf("  jitter (seed %d): %d vertices moved, %d slid along the boundary, %d kept, %d edges flipped, "
                "max deviation %.3g\n", seed, jr.moved_vertices, jr.slid_vertices, jr.fixed_vertices, jr.flipped_edges,
                jr.max_deviation);
     }
     if ((st = neuv_mesh_save(m, out))) { mesh_free(m); return cli_fail(out, st); }
-    printf("%s: %d vertices, %d faces%s (%.3f s)\n", out, m->nv, m->nf, m->nuv > 0 ? ", with UVs" : "",
+    if (!cli_opts.quiet) printf("%s: %d vertices, %d faces%s (%.3f s)\n", out, m->nv, m->nf, m->nuv > 0 ? ", with UVs" : "",
            now_seconds() - t0);
     mesh_free(m);
     return 0;
