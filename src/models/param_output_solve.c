@@ -126,6 +126,18 @@ static void face_weights(const float *B, double wx[3], double wy[3])
     wy[0] = -(double)B[1] - B[3]; wy[1] = B[1]; wy[2] = B[3];
 }
 
+/* The face's Jacobian in its frame from the vertices' uv. */
+static void face_jacobian(const param_solve_data *d, int f, const double *uv, double wx[3], double wy[3], double J[4])
+{
+    const int *t = d->tri + 3 * f;
+    face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
+    J[0] = J[1] = J[2] = J[3] = 0;
+    for (int q = 0; q < 3; q++) {
+        J[0] += wx[q] * uv[2 * t[q]]; J[1] += wy[q] * uv[2 * t[q]];
+        J[2] += wx[q] * uv[2 * t[q] + 1]; J[3] += wy[q] * uv[2 * t[q] + 1];
+    }
+}
+
 /* The fold barrier's weight on face f. */
 static double fold_weight_of(const param_solve_data *d, int f)
 {
@@ -141,15 +153,8 @@ static double block_energy(const param_solve_data *d, const block *b, const doub
     int fl = 0;
     for (int k = 0; k < b->nf; k++) {
         int f = b->faces[k];
-        const int *t = d->tri + 3 * f;
-        double wx[3], wy[3], J[4] = {0, 0, 0, 0};
-        face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
-        for (int q = 0; q < 3; q++) {
-            J[0] += wx[q] * uv[2 * t[q]];
-            J[1] += wy[q] * uv[2 * t[q]];
-            J[2] += wx[q] * uv[2 * t[q] + 1];
-            J[3] += wy[q] * uv[2 * t[q] + 1];
-        }
+        double wx[3], wy[3], J[4];
+        face_jacobian(d, f, uv, wx, wy, J);
         double sg = sigma[d->fchart[f]], r1 = J[0] - sg * J[3], r2 = J[1] + sg * J[2];
         e += d->face_w[f] * (r1 * r1 + r2 * r2);
         double det = sg * (J[0] * J[3] - J[1] * J[2]), fw = fold_weight_of(d, f);
@@ -184,12 +189,8 @@ static void fold_row(const param_solve_data *d, int f, const double *phi, int H,
                      double sg, double s2, normal_eq *q)
 {
     const int *t = d->tri + 3 * f;
-    double wx[3], wy[3], J[4] = {0, 0, 0, 0};
-    face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
-    for (int j = 0; j < 3; j++) {
-        J[0] += wx[j] * uv[2 * t[j]]; J[1] += wy[j] * uv[2 * t[j]];
-        J[2] += wx[j] * uv[2 * t[j] + 1]; J[3] += wy[j] * uv[2 * t[j] + 1];
-    }
+    double wx[3], wy[3], J[4];
+    face_jacobian(d, f, uv, wx, wy, J);
     double det = sg * (J[0] * J[3] - J[1] * J[2]), gap = d->fold_eps * s2 - det;
     double fw = fold_weight_of(d, f);
     if (!(gap > 0) || !(s2 > 0) || !(fw > 0)) return;
@@ -262,18 +263,6 @@ static void anchor_rows(const block *b, const double *phi, int H, const double *
             r[j * K + H] = w * s;
             *c = w * (kap - uv0[2 * v + j]);
         }
-    }
-}
-
-/* The face's Jacobian in its frame from the vertices' uv. */
-static void face_jacobian(const param_solve_data *d, int f, const double *uv, double wx[3], double wy[3], double J[4])
-{
-    const int *t = d->tri + 3 * f;
-    face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
-    J[0] = J[1] = J[2] = J[3] = 0;
-    for (int q = 0; q < 3; q++) {
-        J[0] += wx[q] * uv[2 * t[q]]; J[1] += wy[q] * uv[2 * t[q]];
-        J[2] += wx[q] * uv[2 * t[q] + 1]; J[3] += wy[q] * uv[2 * t[q] + 1];
     }
 }
 
@@ -434,13 +423,8 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     /* The fold barrier's scale: each chart's area-weighted mean |det J| in uv0. */
     memset(csum, 0, sizeof(double) * (size_t)nc);
     for (int f0 = 0; f0 < d->nf; f0++) {
-        const int *t = d->tri + 3 * f0;
-        double wx[3], wy[3], J[4] = {0, 0, 0, 0};
-        face_weights(d->frame_inv + 4 * (size_t)f0, wx, wy);
-        for (int q = 0; q < 3; q++) {
-            J[0] += wx[q] * st->uv[2 * t[q]]; J[1] += wy[q] * st->uv[2 * t[q]];
-            J[2] += wx[q] * st->uv[2 * t[q] + 1]; J[3] += wy[q] * st->uv[2 * t[q] + 1];
-        }
+        double wx[3], wy[3], J[4];
+        face_jacobian(d, f0, st->uv, wx, wy, J);
         st->fold_s2[d->fchart[f0]] += d->face_w[f0] * fabs(J[0] * J[3] - J[1] * J[2]);
         csum[d->fchart[f0]] += d->face_w[f0];
     }
