@@ -441,8 +441,13 @@ static double block_objective(const solve_state *st, const block *b, const doubl
                               int *flips)
 {
     const param_solve_data *d = st->d;
-    double e = block_energy(d, b, uv, st->sigma, st->fold_s2, flips);
-    if (mips) e = block_energy_mips(d, b, uv, st->sigma);
+    double e;
+    if (mips) { /* infinite exactly when a face the barrier counts folds */
+        e = block_energy_mips(d, b, uv, st->sigma);
+        if (flips) *flips = isfinite(e) ? 0 : 1;
+    } else {
+        e = block_energy(d, b, uv, st->sigma, st->fold_s2, flips);
+    }
     return e + anchor * block_anchor(b, uv, st->uv0, st->mv);
 }
 
