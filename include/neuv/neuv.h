@@ -26,6 +26,14 @@
 #ifndef NEUV_NEUV_H
 #define NEUV_NEUV_H
 
+/* NEUV_API marks what the shared library exports; everything else in it is
+ * hidden. Defined empty for the static library. */
+#if defined(NEUV_BUILDING_SHARED) && defined(__GNUC__)
+#define NEUV_API __attribute__((visibility("default")))
+#else
+#define NEUV_API
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -39,11 +47,11 @@ typedef enum neuv_status {
 } neuv_status;
 
 /* Message of the last failure on this thread ("" if none). */
-const char *neuv_last_error(void);
+NEUV_API const char *neuv_last_error(void);
 /* Short name of a status ("ok", "bad input", ...). */
-const char *neuv_status_name(neuv_status status);
+NEUV_API const char *neuv_status_name(neuv_status status);
 /* Process exit code for a status: 0 ok, 2 bad input/IO, 1 internal. */
-int neuv_exit_code(neuv_status status);
+NEUV_API int neuv_exit_code(neuv_status status);
 
 typedef enum neuv_log_level {
     NEUV_LOG_DEBUG = 0,
@@ -56,21 +64,21 @@ typedef void (*neuv_log_fn)(void *user, neuv_log_level level, const char *messag
 /* Progress of a long stage: fraction in [0,1]; detail is e.g. "iter 120 loss 0.031". */
 typedef void (*neuv_progress_fn)(void *user, const char *stage, double fraction, const char *detail);
 /* Process-wide callbacks (NULL to silence). Not thread-safe to change while running. */
-void neuv_set_callbacks(neuv_log_fn log, neuv_progress_fn progress, void *user);
+NEUV_API void neuv_set_callbacks(neuv_log_fn log, neuv_progress_fn progress, void *user);
 
-const char *neuv_version(void);
+NEUV_API const char *neuv_version(void);
 
 /* A triangle mesh, optionally with per-corner UVs. */
 typedef struct neuv_mesh neuv_mesh;
 
 /* Reads OBJ, OFF, PLY (ASCII and binary), STL, glTF/GLB; polygons are triangulated. */
-neuv_status neuv_mesh_load(const char *path, neuv_mesh **out);
+NEUV_API neuv_status neuv_mesh_load(const char *path, neuv_mesh **out);
 /* Writes by extension: .obj, .ply, .glb/.gltf; atomically (temporary file, then rename). */
-neuv_status neuv_mesh_save(const neuv_mesh *mesh, const char *path);
-void neuv_mesh_free(neuv_mesh *mesh);
-int neuv_mesh_vertex_count(const neuv_mesh *mesh);
-int neuv_mesh_face_count(const neuv_mesh *mesh);
-int neuv_mesh_has_uv(const neuv_mesh *mesh);
+NEUV_API neuv_status neuv_mesh_save(const neuv_mesh *mesh, const char *path);
+NEUV_API void neuv_mesh_free(neuv_mesh *mesh);
+NEUV_API int neuv_mesh_vertex_count(const neuv_mesh *mesh);
+NEUV_API int neuv_mesh_face_count(const neuv_mesh *mesh);
+NEUV_API int neuv_mesh_has_uv(const neuv_mesh *mesh);
 
 /* ---- unwrapping -------------------------------------------------------- */
 
@@ -100,7 +108,7 @@ typedef struct neuv_unwrap_options {
     int use_cache;           /* 1: operators through the on-disk cache (default) */
 } neuv_unwrap_options;
 
-void neuv_unwrap_options_default(neuv_unwrap_options *o);
+NEUV_API void neuv_unwrap_options_default(neuv_unwrap_options *o);
 
 /* The outcome of one unwrap: the cleaned mesh with its packed UVs, the
  * charts, per-stage seconds, every repair, and the metrics. */
@@ -108,15 +116,15 @@ typedef struct neuv_unwrap_result neuv_unwrap_result;
 
 /* Cleans a copy of `mesh` (the input is not modified), computes operators,
  * charts, the parameterization, repairs, and packs the atlas. */
-neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, neuv_unwrap_result **out);
+NEUV_API neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, neuv_unwrap_result **out);
 /* The unwrapped mesh (owned by the result). */
-const neuv_mesh *neuv_unwrap_mesh(const neuv_unwrap_result *r);
-int neuv_unwrap_chart_count(const neuv_unwrap_result *r);
+NEUV_API const neuv_mesh *neuv_unwrap_mesh(const neuv_unwrap_result *r);
+NEUV_API int neuv_unwrap_chart_count(const neuv_unwrap_result *r);
 /* The JSON report of SPEC.md section 4 (caller frees). load_seconds and
  * export_seconds are the caller's own stages, added to the report. */
-char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_name,
+NEUV_API char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_name,
                               double load_seconds, double export_seconds);
-void neuv_unwrap_result_free(neuv_unwrap_result *r);
+NEUV_API void neuv_unwrap_result_free(neuv_unwrap_result *r);
 
 #ifdef __cplusplus
 }

@@ -335,7 +335,7 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
     int sorted_ok = 1;
     for (int h = 0; h < PACK_ORDERS; h++) sorted_ok = sorted_ok && P->sorted[h];
     if (!P->ch || !sorted_ok || !P->ltri || !order || !start || !stamp || !map || !*new_tri_uv || !*old_of_new) {
-        st = neuv_fail_nomem("atlas packing");
+        st = error_nomem("atlas packing");
         goto done;
     }
     /* Faces grouped by chart, in face order within a chart (counting sort). */
@@ -367,7 +367,7 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
     }
     *nuv_new = next;
     P->L = malloc(sizeof *P->L * 2 * ((size_t)next + 1));
-    if (!P->L) { st = neuv_fail_nomem("atlas packing"); goto done; }
+    if (!P->L) { st = error_nomem("atlas packing"); goto done; }
     for (int c = 0; c < ncharts; c++) {
         chart_info *ci = &P->ch[c];
         double a3 = 0, auv = 0;
@@ -401,7 +401,7 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
             L[2 * v + 1] = ci->s * uv[1];
         }
         double W, H;
-        if (min_area_rect(L, nv, &ci->theta, &W, &H) != 0) { st = neuv_fail_nomem("atlas packing"); goto done; }
+        if (min_area_rect(L, nv, &ci->theta, &W, &H) != 0) { st = error_nomem("atlas packing"); goto done; }
         double cs = cos(ci->theta), sn = sin(ci->theta);
         double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
         for (int v = 0; v < nv; v++) {
@@ -420,7 +420,7 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
         chart_fit_angle(L, nv, ci);
     }
     chart_order *co = malloc(sizeof *co * ((size_t)ncharts + 1));
-    if (!co) { st = neuv_fail_nomem("atlas packing"); goto done; }
+    if (!co) { st = error_nomem("atlas packing"); goto done; }
     for (int h = 0; h < PACK_ORDERS; h++) {
         for (int c = 0; c < ncharts; c++) {
             const chart_info *ci = &P->ch[c];
@@ -556,20 +556,20 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     atlas_pack_options o;
     if (opt) o = *opt;
     else atlas_pack_options_default(&o);
-    if (!m || m->nuv <= 0 || !m->tri_uv) return neuv_fail(NEUV_ERR_INPUT, "packing needs a mesh with UVs");
+    if (!m || m->nuv <= 0 || !m->tri_uv) return error_set(NEUV_ERR_INPUT, "packing needs a mesh with UVs");
     if (o.resolution < 8 || o.resolution > 32768)
-        return neuv_fail(NEUV_ERR_INPUT, "atlas resolution %d px is outside 8..32768", o.resolution);
+        return error_set(NEUV_ERR_INPUT, "atlas resolution %d px is outside 8..32768", o.resolution);
     if (o.padding < 0 || 2 * o.padding + 1 > o.resolution)
-        return neuv_fail(NEUV_ERR_INPUT, "padding %d px does not fit in a %d px atlas", o.padding, o.resolution);
-    if (ncharts < 0) return neuv_fail(NEUV_ERR_INPUT, "negative chart count");
+        return error_set(NEUV_ERR_INPUT, "padding %d px does not fit in a %d px atlas", o.padding, o.resolution);
+    if (ncharts < 0) return error_set(NEUV_ERR_INPUT, "negative chart count");
     for (int f = 0; f < m->nf; f++)
         if (face_chart[f] < 0 || face_chart[f] >= ncharts)
-            return neuv_fail(NEUV_ERR_INPUT, "face %d has chart id %d outside 0..%d", f, face_chart[f], ncharts - 1);
+            return error_set(NEUV_ERR_INPUT, "face %d has chart id %d outside 0..%d", f, face_chart[f], ncharts - 1);
     for (int f = 0; f < 3 * m->nf; f++)
         if (m->tri_uv[f] < 0 || m->tri_uv[f] >= m->nuv)
-            return neuv_fail(NEUV_ERR_INPUT, "face %d uses UV index %d outside 0..%d", f / 3, m->tri_uv[f], m->nuv - 1);
+            return error_set(NEUV_ERR_INPUT, "face %d uses UV index %d outside 0..%d", f / 3, m->tri_uv[f], m->nuv - 1);
     for (int u = 0; u < 2 * m->nuv; u++)
-        if (!isfinite(m->uv[u])) return neuv_fail(NEUV_ERR_INPUT, "UV %d is not a finite number", u / 2);
+        if (!isfinite(m->uv[u])) return error_set(NEUV_ERR_INPUT, "UV %d is not a finite number", u / 2);
 
     pack_ctx P;
     memset(&P, 0, sizeof P);
@@ -585,12 +585,12 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     cache.n = ncharts * (pack_turns_max + 1);
     cache.t = calloc((size_t)cache.n + 1, sizeof *cache.t);
     cache.budget = PACK_CACHE_BYTES;
-    if (!cache.t) { st = neuv_fail_nomem("atlas packing"); goto done; }
+    if (!cache.t) { st = error_nomem("atlas packing"); goto done; }
     pl = calloc((size_t)ncharts + 1, sizeof *pl);
     best_pl = calloc((size_t)ncharts + 1, sizeof *best_pl);
     uv_new = malloc(sizeof *uv_new * 2 * ((size_t)nuv_new + 1));
     q = malloc(sizeof *q * 2 * ((size_t)P.max_verts + 1));
-    if (!pl || !best_pl || !uv_new || !q) { st = neuv_fail_nomem("atlas packing"); goto done; }
+    if (!pl || !best_pl || !uv_new || !q) { st = error_nomem("atlas packing"); goto done; }
 
     /* Upper bound on the global scale: the charts' total area cannot exceed
      * the free square, nor can the longest chart side. Then shrink until
@@ -618,7 +618,7 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
             attempts++;
             if (fh > frac) frac = fh;
         }
-        if (rc < 0) { st = neuv_fail_nomem("atlas packing"); goto done; }
+        if (rc < 0) { st = error_nomem("atlas packing"); goto done; }
         if (rc == 1) {
             lo = g;
             memcpy(best_pl, pl, sizeof *pl * (size_t)ncharts);
@@ -639,12 +639,12 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
         }
     }
     if (lo == 0) {
-        st = neuv_fail(NEUV_ERR_INPUT, "%d charts do not fit in a %d px atlas with %d px padding",
+        st = error_set(NEUV_ERR_INPUT, "%d charts do not fit in a %d px atlas with %d px padding",
                        ncharts, o.resolution, o.padding);
         goto done;
     }
     if (!o.quick && pack_polish(&P, &cache, &lo, pl, best_pl, &attempts) != 0) {
-        st = neuv_fail_nomem("atlas packing");
+        st = error_nomem("atlas packing");
         goto done;
     }
     g = lo;

@@ -30,7 +30,7 @@ static neuv_status chart_convexity(const neuv_mesh *m, const int *face_chart, in
     int *hull = malloc(sizeof(int) * 3 * (size_t)m->nf);
     double *area = calloc((size_t)n_charts + 1, sizeof(double));
     neuv_status s = NEUV_OK;
-    if (!count || !start || !pts || !hull || !area) { s = neuv_fail_nomem("chart convexity"); goto done; }
+    if (!count || !start || !pts || !hull || !area) { s = error_nomem("chart convexity"); goto done; }
     for (int f = 0; f < m->nf; f++) count[face_chart[f]]++;
     for (int c = 0; c < n_charts; c++) start[c + 1] = start[c] + count[c];
     memset(count, 0, sizeof(int) * (size_t)n_charts);
@@ -47,7 +47,7 @@ static neuv_status chart_convexity(const neuv_mesh *m, const int *face_chart, in
         int n = 3 * (start[c + 1] - start[c]);
         const double *p = pts + 6 * (size_t)start[c];
         int h = convex_hull_2d(p, n, hull);
-        if (h < 0) { s = neuv_fail_nomem("chart convexity"); break; }
+        if (h < 0) { s = error_nomem("chart convexity"); break; }
         double ha = 0;
         for (int i = 0; i < h; i++) {
             const double *u = p + 2 * hull[i], *v = p + 2 * hull[(i + 1) % h];
@@ -67,7 +67,7 @@ static neuv_status trial_pack(const neuv_mesh *m, const int *face_chart, int n_c
                               double *eff)
 {
     neuv_mesh *c = mesh_clone(m);
-    if (!c) return neuv_fail_nomem("trial packing");
+    if (!c) return error_nomem("trial packing");
     atlas_pack_options q = *po;
     q.quick = 1;
     /* A quarter of the atlas side: the trials compare chart sets, and a
@@ -106,13 +106,13 @@ neuv_status pack_split_charts(const neuv_mesh *m, int *face_chart, int *n_charts
     memset(rep, 0, sizeof *rep);
     *parent_out = NULL;
     if (!m || m->nuv <= 0 || !m->tri_uv || *n_charts < 1)
-        return neuv_fail(NEUV_ERR_INPUT, "splitting for packing needs a mesh with UVs and charts");
+        return error_set(NEUV_ERR_INPUT, "splitting for packing needs a mesh with UVs and charts");
     double t0 = now_seconds();
     int n = *n_charts, cap = 0, *parent = NULL, *tried = NULL, tcap = 0;
     int *trial = malloc(sizeof(int) * (size_t)m->nf);
     double *cvx = NULL;
     neuv_status s = NEUV_OK;
-    if (!trial || grow(&parent, &cap, n) || grow(&tried, &tcap, n)) { s = neuv_fail_nomem("chart splitting"); goto done; }
+    if (!trial || grow(&parent, &cap, n) || grow(&tried, &tcap, n)) { s = error_nomem("chart splitting"); goto done; }
     for (int c = 0; c < n; c++) { parent[c] = c; tried[c] = 0; }
     if (n > o.max_charts || o.max_trials <= 0) goto done;
     double eff;
@@ -126,7 +126,7 @@ neuv_status pack_split_charts(const neuv_mesh *m, int *face_chart, int *n_charts
         if (cvx_charts != n) {
             free(cvx);
             cvx = malloc(sizeof(double) * (size_t)n);
-            if (!cvx) { s = neuv_fail_nomem("chart splitting"); break; }
+            if (!cvx) { s = error_nomem("chart splitting"); break; }
             if ((s = chart_convexity(m, face_chart, n, cvx)) != NEUV_OK) break;
             cvx_charts = n;
         }
@@ -152,9 +152,9 @@ neuv_status pack_split_charts(const neuv_mesh *m, int *face_chart, int *n_charts
             s = NEUV_OK;
             continue;
         }
-        neuv_progress("pack", 0, "split chart %d: packing %.3f -> %.3f", worst, eff, e2);
+        log_progress("pack", 0, "split chart %d: packing %.3f -> %.3f", worst, eff, e2);
         if (!(e2 >= eff * (1 + o.min_gain))) continue;
-        if (grow(&parent, &cap, n2) || grow(&tried, &tcap, n2)) { s = neuv_fail_nomem("chart splitting"); break; }
+        if (grow(&parent, &cap, n2) || grow(&tried, &tcap, n2)) { s = error_nomem("chart splitting"); break; }
         for (int c = n; c < n2; c++) { parent[c] = parent[worst]; tried[c] = 0; }
         tried[worst] = 0; /* its remaining part may be worth another cut */
         memcpy(face_chart, trial, sizeof(int) * (size_t)m->nf);

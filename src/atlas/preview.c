@@ -95,7 +95,7 @@ static neuv_status write_uv_png(const neuv_mesh *m, const char *path, preview_co
 {
     static const uint8_t outside[3] = {52, 54, 60}, inside[3] = {250, 250, 250};
     raster_image img;
-    if (raster_image_init(&img, S, S, outside) != 0) return neuv_fail_nomem("preview image");
+    if (raster_image_init(&img, S, S, outside) != 0) return error_nomem("preview image");
     int *chart = malloc(sizeof *chart * (size_t)(m->nf > 0 ? m->nf : 1));
     unsigned char *flipped = calloc((size_t)(m->nf > 0 ? m->nf : 1), 1);
     double *value = malloc(sizeof *value * (size_t)(m->nf > 0 ? m->nf : 1));
@@ -104,7 +104,7 @@ static neuv_status write_uv_png(const neuv_mesh *m, const char *path, preview_co
     neuv_status st = NEUV_OK;
     int nc = (chart && flipped && value && paint.count && paint.owner) ? uv_charts(m, chart) : -1;
     if (nc >= 0) chart_sign = calloc((size_t)nc + 1, sizeof *chart_sign);
-    if (nc < 0 || !chart_sign) { st = neuv_fail_nomem("preview"); goto done; }
+    if (nc < 0 || !chart_sign) { st = error_nomem("preview"); goto done; }
 
     double lo[2] = {0, 0}, hi[2] = {1, 1};
     for (int u = 0; u < m->nuv; u++)
@@ -216,11 +216,11 @@ neuv_status preview_write(const neuv_mesh *m, const char *prefix, preview_color 
 
 neuv_status preview_write_sized(const neuv_mesh *m, const char *prefix, preview_color color, int size)
 {
-    if (size < 64 || size > 16384) return neuv_fail(NEUV_ERR_INPUT, "preview size %d px is outside 64..16384", size);
-    if (!m || m->nuv <= 0 || !m->tri_uv) return neuv_fail(NEUV_ERR_INPUT, "preview needs a mesh with UVs");
+    if (size < 64 || size > 16384) return error_set(NEUV_ERR_INPUT, "preview size %d px is outside 64..16384", size);
+    if (!m || m->nuv <= 0 || !m->tri_uv) return error_set(NEUV_ERR_INPUT, "preview needs a mesh with UVs");
     size_t n = strlen(prefix) + 16;
     char *path = malloc(n);
-    if (!path) return neuv_fail_nomem("preview path");
+    if (!path) return error_nomem("preview path");
     snprintf(path, n, "%s-uv.png", prefix);
     neuv_status st = write_uv_png(m, path, color, size);
     if (st == NEUV_OK) {
@@ -233,6 +233,6 @@ neuv_status preview_write_sized(const neuv_mesh *m, const char *prefix, preview_
 
 neuv_status preview_write_labels(const neuv_mesh *m, const int *face_label, const char *path)
 {
-    if (!m || !face_label) return neuv_fail(NEUV_ERR_INPUT, "label preview needs a mesh and a label per face");
+    if (!m || !face_label) return error_set(NEUV_ERR_INPUT, "label preview needs a mesh and a label per face");
     return write_views_png(m, face_label, path, 1024);
 }

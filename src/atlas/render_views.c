@@ -112,9 +112,9 @@ neuv_status render_four_views(const neuv_mesh *m, const int *face_label, int che
     memset(out, 0, sizeof *out);
     if (size < 16) size = 16;
     int cell = size / 2;
-    if (raster_image_init(out, 2 * cell, 2 * cell, render_background) != 0) return neuv_fail_nomem("preview image");
+    if (raster_image_init(out, 2 * cell, 2 * cell, render_background) != 0) return error_nomem("preview image");
     float *depth = malloc(sizeof *depth * (size_t)out->w * out->h);
-    if (!depth) { raster_image_free(out); return neuv_fail_nomem("preview depth buffer"); }
+    if (!depth) { raster_image_free(out); return error_nomem("preview depth buffer"); }
     for (size_t i = 0; i < (size_t)out->w * out->h; i++) depth[i] = 0;
     double lo[3], hi[3], center[3], radius = 0;
     mesh_bounding_box(m, lo, hi);

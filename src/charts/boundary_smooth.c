@@ -37,11 +37,11 @@ static neuv_status vertex_star_build(const neuv_mesh *m, const face_graph *g, ve
     s->start = calloc((size_t)nv + 1, sizeof(int));
     s->face = malloc(sizeof(int) * 3 * (size_t)(nf > 0 ? nf : 1));
     s->open = calloc((size_t)(nv > 0 ? nv : 1), 1);
-    if (!s->start || !s->face || !s->open) { vertex_star_free(s); return neuv_fail_nomem("vertex stars"); }
+    if (!s->start || !s->face || !s->open) { vertex_star_free(s); return error_nomem("vertex stars"); }
     for (int i = 0; i < 3 * nf; i++) s->start[m->tri[i] + 1]++;
     for (int v = 0; v < nv; v++) s->start[v + 1] += s->start[v];
     int *fill = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
-    if (!fill) { vertex_star_free(s); return neuv_fail_nomem("vertex stars"); }
+    if (!fill) { vertex_star_free(s); return error_nomem("vertex stars"); }
     memcpy(fill, s->start, sizeof(int) * (size_t)nv);
     for (int f = 0; f < nf; f++)
         for (int k = 0; k < 3; k++) {
@@ -97,7 +97,7 @@ neuv_status charts_smooth_boundaries(const neuv_mesh *m, const int *active, int 
                                      int *moves)
 {
     if (moves) *moves = 0;
-    if (!m || !face_chart) return neuv_fail(NEUV_ERR_INPUT, "charts_smooth_boundaries: missing mesh or charts");
+    if (!m || !face_chart) return error_set(NEUV_ERR_INPUT, "charts_smooth_boundaries: missing mesh or charts");
     if (m->nf == 0) return NEUV_OK;
     face_graph g;
     neuv_status st = face_graph_build(m, &g);

@@ -37,7 +37,7 @@ neuv_status chart_adjacency_build(const neuv_mesh *m, const int *face_chart, cha
             if (o > f && face_chart[o] != face_chart[f]) count++;
         }
     chart_pair *pairs = malloc(sizeof *pairs * (count > 0 ? count : 1));
-    if (!pairs) { face_graph_free(&g); return neuv_fail_nomem("chart adjacency"); }
+    if (!pairs) { face_graph_free(&g); return error_nomem("chart adjacency"); }
     count = 0;
     for (int f = 0; f < m->nf; f++)
         for (int k = 0; k < 3; k++) {
@@ -59,7 +59,7 @@ neuv_status chart_adjacency_build(const neuv_mesh *m, const int *face_chart, cha
     if (!adj->a || !adj->b || !adj->length) {
         free(pairs);
         chart_adjacency_free(adj);
-        return neuv_fail_nomem("chart adjacency");
+        return error_nomem("chart adjacency");
     }
     int n = -1;
     for (size_t i = 0; i < count; i++) {

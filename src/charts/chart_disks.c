@@ -109,7 +109,7 @@ neuv_status charts_make_disks(const neuv_mesh *m, const face_graph *g, int *face
         if (parts < 0) { free(comp); free(it.faces); goto oom; }
         if (parts < 2) {
             free(comp); free(it.faces);
-            st = neuv_fail(NEUV_ERR_INTERNAL, "chart %d (%d faces) is not a disk and could not be split",
+            st = error_set(NEUV_ERR_INTERNAL, "chart %d (%d faces) is not a disk and could not be split",
                            it.id, it.n);
             goto fail;
         }
@@ -138,7 +138,7 @@ neuv_status charts_make_disks(const neuv_mesh *m, const face_graph *g, int *face
     }
     goto done;
 oom:
-    st = neuv_fail_nomem("chart disks");
+    st = error_nomem("chart disks");
 fail:
 done:
     for (int i = 0; i < stack.n; i++) free(stack.item[i].faces);

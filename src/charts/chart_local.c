@@ -11,7 +11,7 @@ neuv_status chart_scratch_init(chart_scratch *s, int nf, int nv)
     s->vert_map = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
     if (!s->face_map || !s->vert_map) {
         chart_scratch_free(s);
-        return neuv_fail_nomem("chart scratch");
+        return error_nomem("chart scratch");
     }
     for (int i = 0; i < nf; i++) s->face_map[i] = -1;
     for (int i = 0; i < nv; i++) s->vert_map[i] = -1;
@@ -46,7 +46,7 @@ neuv_status chart_local_build(const neuv_mesh *m, const face_graph *g, const int
     L->vpos = malloc(sizeof(double) * n1 * 9);
     if (!L->face || !L->vert || !L->tri || !L->adj || !L->elen || !L->cen || !L->vpos) {
         chart_local_free(L);
-        return neuv_fail_nomem("chart");
+        return error_nomem("chart");
     }
     memcpy(L->face, faces, sizeof(int) * (size_t)n);
     for (int i = 0; i < n; i++) s->face_map[faces[i]] = i;

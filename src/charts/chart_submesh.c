@@ -13,13 +13,13 @@ neuv_status chart_submesh(const neuv_mesh *m, const int *face_chart, int id,
     *fmap = NULL;
     int nf = 0;
     for (int f = 0; f < m->nf; f++) nf += face_chart[f] == id;
-    if (nf == 0) return neuv_fail(NEUV_ERR_INPUT, "chart %d has no faces", id);
+    if (nf == 0) return error_set(NEUV_ERR_INPUT, "chart %d has no faces", id);
     int *local = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
     int *fm = malloc(sizeof(int) * (size_t)nf);
     int *vm = malloc(sizeof(int) * (size_t)nf * 3);
     if (!local || !fm || !vm) {
         free(local); free(fm); free(vm);
-        return neuv_fail_nomem("chart submesh");
+        return error_nomem("chart submesh");
     }
     for (int v = 0; v < m->nv; v++) local[v] = -1;
     int nv = 0, i = 0;
@@ -34,7 +34,7 @@ neuv_status chart_submesh(const neuv_mesh *m, const int *face_chart, int id,
     neuv_mesh *s = mesh_create(nv, nf, 0);
     if (!s) {
         free(local); free(fm); free(vm);
-        return neuv_fail_nomem("chart submesh");
+        return error_nomem("chart submesh");
     }
     for (int v = 0; v < nv; v++) memcpy(s->pos + 3 * v, m->pos + 3 * vm[v], sizeof(double) * 3);
     for (int j = 0; j < nf; j++)

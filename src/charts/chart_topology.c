@@ -15,13 +15,13 @@ neuv_status chart_local_shape(const chart_local *L, chart_shape *s, int *vloop)
     int *comp = malloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
     if (!out || !nxt || !comp) {
         free(out); free(nxt); free(comp);
-        return neuv_fail_nomem("chart topology");
+        return error_nomem("chart topology");
     }
     s->components = chart_local_components(L, NULL, NULL, comp);
     free(comp);
     if (s->components < 0) {
         free(out); free(nxt);
-        return neuv_fail_nomem("chart topology");
+        return error_nomem("chart topology");
     }
     /* Boundary half-edges are those with no chart face across. On an
      * oriented manifold each boundary vertex is left by exactly one of them;

@@ -43,13 +43,13 @@ static neuv_status verify_charts(const neuv_mesh *m, const int *face_chart, int 
 {
     for (int f = 0; f < m->nf; f++)
         if (face_chart[f] < 0 || face_chart[f] >= n_charts)
-            return neuv_fail(NEUV_ERR_INTERNAL, "face %d has no chart", f);
+            return error_set(NEUV_ERR_INTERNAL, "face %d has no chart", f);
     unsigned char *seen = calloc((size_t)(m->nv > 0 ? m->nv : 1), 1);
     int *start = calloc((size_t)n_charts + 1, sizeof(int));
     int *faces = malloc(sizeof(int) * (size_t)m->nf);
     if (!seen || !start || !faces) {
         free(seen); free(start); free(faces);
-        return neuv_fail_nomem("chart check");
+        return error_nomem("chart check");
     }
     /* Face lists per chart (counting sort), so the check stays linear. */
     for (int f = 0; f < m->nf; f++) start[face_chart[f] + 1]++;
@@ -62,10 +62,10 @@ static neuv_status verify_charts(const neuv_mesh *m, const int *face_chart, int 
         const int *cf = faces + start[c];
         int n = start[c + 1] - start[c];
         component_topology t;
-        if (mesh_faces_topology(m, cf, n, &t) != NEUV_OK) { st = neuv_fail_nomem("chart check"); break; }
+        if (mesh_faces_topology(m, cf, n, &t) != NEUV_OK) { st = error_nomem("chart check"); break; }
         int *ls = NULL, *lv = NULL;
         int loops = mesh_faces_boundary_loops(m, cf, n, &ls, &lv);
-        if (loops < 0) { st = neuv_fail_nomem("chart check"); break; }
+        if (loops < 0) { st = error_nomem("chart check"); break; }
         int simple = 1;
         if (loops == 1) {
             for (int i = ls[0]; i < ls[1]; i++) {
@@ -76,7 +76,7 @@ static neuv_status verify_charts(const neuv_mesh *m, const int *face_chart, int 
         }
         free(ls); free(lv);
         if (n == 0 || t.boundary_loops != 1 || loops != 1 || t.genus != 0 || t.euler != 1 || !simple)
-            st = neuv_fail(NEUV_ERR_INTERNAL,
+            st = error_set(NEUV_ERR_INTERNAL,
                            "chart %d is not a disk (%d faces, %d loops, genus %d, euler %d, %s boundary)", c,
                            n, loops, t.genus, t.euler, simple ? "simple" : "pinched");
     }
@@ -92,14 +92,14 @@ neuv_status charts_from_labels(const neuv_mesh *m, const int *face_label,
     charts_default_options(&o);
     if (opts) o = *opts;
     if (!m || !face_label || !face_chart || !n_charts)
-        return neuv_fail(NEUV_ERR_INPUT, "charts_from_labels: missing mesh, labels or output");
+        return error_set(NEUV_ERR_INPUT, "charts_from_labels: missing mesh, labels or output");
     if (o.smooth_sweeps < 0)
-        return neuv_fail(NEUV_ERR_INPUT, "smoothing sweeps %d is negative", o.smooth_sweeps);
+        return error_set(NEUV_ERR_INPUT, "smoothing sweeps %d is negative", o.smooth_sweeps);
     if (!(o.min_area_share >= 0.0 && o.min_area_share < 1.0))
-        return neuv_fail(NEUV_ERR_INPUT, "minimum chart area share %g is outside [0, 1)", o.min_area_share);
+        return error_set(NEUV_ERR_INPUT, "minimum chart area share %g is outside [0, 1)", o.min_area_share);
     for (int f = 0; f < m->nf; f++)
         if (face_label[f] < 0)
-            return neuv_fail(NEUV_ERR_INPUT, "face %d has label %d; labels must be >= 0", f, face_label[f]);
+            return error_set(NEUV_ERR_INPUT, "face %d has label %d; labels must be >= 0", f, face_label[f]);
     charts_report rep;
     memset(&rep, 0, sizeof rep);
     *n_charts = 0;
@@ -111,7 +111,7 @@ neuv_status charts_from_labels(const neuv_mesh *m, const int *face_label,
     neuv_status st = face_graph_build(m, &g);
     if (st != NEUV_OK) return st;
     int n = label_pieces(&g, face_label, face_chart);
-    if (n < 0) { face_graph_free(&g); return neuv_fail_nomem("chart pieces"); }
+    if (n < 0) { face_graph_free(&g); return error_nomem("chart pieces"); }
     rep.pieces = n;
     double total = 0.0;
     for (int f = 0; f < m->nf; f++) total += g.area[f];
@@ -120,12 +120,12 @@ neuv_status charts_from_labels(const neuv_mesh *m, const int *face_label,
     face_graph_free(&g);
     if (st != NEUV_OK) return st;
     n = charts_renumber(m->nf, face_chart);
-    if (n < 0) return neuv_fail_nomem("chart ids");
+    if (n < 0) return error_nomem("chart ids");
     if (o.smooth_sweeps > 0) {
         /* Smoothing is checked locally; should the global check still
          * reject its result, the unsmoothed charts (already disks) stand. */
         int *before = malloc(sizeof(int) * (size_t)m->nf);
-        if (!before) return neuv_fail_nomem("chart smoothing");
+        if (!before) return error_nomem("chart smoothing");
         memcpy(before, face_chart, sizeof(int) * (size_t)m->nf);
         st = charts_smooth_boundaries(m, NULL, face_chart, o.smooth_sweeps, &rep.smoothed);
         if (st == NEUV_OK && rep.smoothed > 0 && verify_charts(m, face_chart, n) != NEUV_OK) {

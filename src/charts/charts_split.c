@@ -18,7 +18,7 @@ static neuv_status smooth_parts(const neuv_mesh *m, int *face_chart, int nc, int
 {
     int *active = calloc((size_t)nc, sizeof(int));
     int *before = malloc(sizeof(int) * (size_t)m->nf);
-    if (!active || !before) { free(active); free(before); return neuv_fail_nomem("chart smoothing"); }
+    if (!active || !before) { free(active); free(before); return error_nomem("chart smoothing"); }
     active[chart_id] = 1;
     for (int c = first_new; c < nc; c++) active[c] = 1;
     memcpy(before, face_chart, sizeof(int) * (size_t)m->nf);
@@ -27,7 +27,7 @@ static neuv_status smooth_parts(const neuv_mesh *m, int *face_chart, int nc, int
     for (int c = 0; c < nc && st == NEUV_OK && moves > 0; c++) {
         if (!active[c]) continue;
         int d = chart_is_disk(m, face_chart, c);
-        if (d < 0) st = neuv_fail_nomem("chart smoothing");
+        if (d < 0) st = error_nomem("chart smoothing");
         if (d == 0) { memcpy(face_chart, before, sizeof(int) * (size_t)m->nf); break; }
     }
     free(active); free(before);
@@ -37,17 +37,17 @@ static neuv_status smooth_parts(const neuv_mesh *m, int *face_chart, int nc, int
 neuv_status charts_split(const neuv_mesh *m, int *face_chart, int *n_charts, int chart_id)
 {
     if (!m || !face_chart || !n_charts)
-        return neuv_fail(NEUV_ERR_INPUT, "charts_split: missing mesh, charts or count");
+        return error_set(NEUV_ERR_INPUT, "charts_split: missing mesh, charts or count");
     if (chart_id < 0 || chart_id >= *n_charts)
-        return neuv_fail(NEUV_ERR_INPUT, "chart %d does not exist (%d charts)", chart_id, *n_charts);
+        return error_set(NEUV_ERR_INPUT, "chart %d does not exist (%d charts)", chart_id, *n_charts);
     int n = 0;
     for (int f = 0; f < m->nf; f++) {
         if (face_chart[f] < 0 || face_chart[f] >= *n_charts)
-            return neuv_fail(NEUV_ERR_INPUT, "face %d has chart %d, outside 0..%d", f, face_chart[f],
+            return error_set(NEUV_ERR_INPUT, "face %d has chart %d, outside 0..%d", f, face_chart[f],
                              *n_charts - 1);
         n += face_chart[f] == chart_id;
     }
-    if (n < 2) return neuv_fail(NEUV_ERR_INPUT, "chart %d has %d face(s); splitting needs two", chart_id, n);
+    if (n < 2) return error_set(NEUV_ERR_INPUT, "chart %d has %d face(s); splitting needs two", chart_id, n);
     int *faces = malloc(sizeof(int) * (size_t)n);
     int *part = malloc(sizeof(int) * (size_t)n);
     int *comp = malloc(sizeof(int) * (size_t)n);
@@ -55,7 +55,7 @@ neuv_status charts_split(const neuv_mesh *m, int *face_chart, int *n_charts, int
     chart_scratch s = {0};
     chart_local L = {0};
     neuv_status st = NEUV_OK;
-    if (!faces || !part || !comp) { st = neuv_fail_nomem("chart split"); goto done; }
+    if (!faces || !part || !comp) { st = error_nomem("chart split"); goto done; }
     n = 0;
     for (int f = 0; f < m->nf; f++)
         if (face_chart[f] == chart_id) faces[n++] = f;
@@ -66,7 +66,7 @@ neuv_status charts_split(const neuv_mesh *m, int *face_chart, int *n_charts, int
     /* The two regions are each connected, but a chart that was in several
      * parts to begin with keeps them apart: every part gets its own id. */
     int parts = chart_local_components(&L, part, NULL, comp);
-    if (parts < 0) { st = neuv_fail_nomem("chart split"); goto done; }
+    if (parts < 0) { st = error_nomem("chart split"); goto done; }
     int nc = *n_charts;
     for (int i = 0; i < n; i++)
         face_chart[faces[i]] = comp[i] == 0 ? chart_id : nc + comp[i] - 1;

@@ -37,7 +37,7 @@ neuv_status face_graph_build(const neuv_mesh *m, face_graph *g)
     if (!g->adj || !g->elen || !g->centroid || !g->area || !keys) {
         free(keys);
         face_graph_free(g);
-        return neuv_fail_nomem("face graph");
+        return error_nomem("face graph");
     }
     for (int f = 0; f < nf; f++) {
         const int *t = m->tri + 3 * f;

@@ -124,14 +124,14 @@ neuv_status charts_merge_fragments(const neuv_mesh *m, const face_graph *g, int 
     min_heap h = {0};
     neuv_status st = NEUV_OK;
     if (!area || !into || !nb || min_heap_init(&h, np) != 0 || build_neighbours(g, piece, nb) != 0) {
-        st = neuv_fail_nomem("fragment merge");
+        st = error_nomem("fragment merge");
         goto done;
     }
     for (int f = 0; f < m->nf; f++) area[piece[f]] += g->area[f];
     for (int p = 0; p < np; p++) {
         into[p] = -1;
         if (area[p] < min_area && min_heap_push(&h, area[p], p) != 0) {
-            st = neuv_fail_nomem("fragment merge");
+            st = error_nomem("fragment merge");
             goto done;
         }
     }
@@ -149,12 +149,12 @@ neuv_status charts_merge_fragments(const neuv_mesh *m, const face_graph *g, int 
         }
         if (best < 0) continue; /* a whole small component: nothing to join */
         int b = nb[a].id[best];
-        if (absorb(nb, a, b) != 0) { st = neuv_fail_nomem("fragment merge"); goto done; }
+        if (absorb(nb, a, b) != 0) { st = error_nomem("fragment merge"); goto done; }
         into[a] = b;
         area[b] += area[a];
         (*merged)++;
         if (area[b] < min_area && min_heap_push(&h, area[b], b) != 0) {
-            st = neuv_fail_nomem("fragment merge");
+            st = error_nomem("fragment merge");
             goto done;
         }
     }
@@ -164,7 +164,7 @@ neuv_status charts_merge_fragments(const neuv_mesh *m, const face_graph *g, int 
         piece[f] = p;
     }
     int n = charts_renumber(m->nf, piece);
-    if (n < 0) st = neuv_fail_nomem("fragment merge");
+    if (n < 0) st = error_nomem("fragment merge");
     else *n_pieces = n;
 done:
     if (nb)

@@ -23,7 +23,7 @@ neuv_status chart_local_face_dijkstra(const chart_local *L, const int *seeds, co
                                       int n_seeds, const unsigned char *cut, double *dist, int *label)
 {
     min_heap h;
-    if (min_heap_init(&h, L->nf + n_seeds) != 0) return neuv_fail_nomem("face Dijkstra");
+    if (min_heap_init(&h, L->nf + n_seeds) != 0) return error_nomem("face Dijkstra");
     for (int i = 0; i < L->nf; i++) {
         dist[i] = INFINITY;
         if (label) label[i] = -1;
@@ -33,7 +33,7 @@ neuv_status chart_local_face_dijkstra(const chart_local *L, const int *seeds, co
         if (dist[f] == 0.0) continue; /* a repeated seed keeps its first label */
         dist[f] = 0.0;
         if (label) label[f] = seed_label ? seed_label[s] : s;
-        if (min_heap_push(&h, 0.0, f) != 0) { min_heap_free(&h); return neuv_fail_nomem("face Dijkstra"); }
+        if (min_heap_push(&h, 0.0, f) != 0) { min_heap_free(&h); return error_nomem("face Dijkstra"); }
     }
     double d;
     int f;
@@ -46,7 +46,7 @@ neuv_status chart_local_face_dijkstra(const chart_local *L, const int *seeds, co
             if (nd < dist[o]) {
                 dist[o] = nd;
                 if (label) label[o] = label[f];
-                if (min_heap_push(&h, nd, o) != 0) { min_heap_free(&h); return neuv_fail_nomem("face Dijkstra"); }
+                if (min_heap_push(&h, nd, o) != 0) { min_heap_free(&h); return error_nomem("face Dijkstra"); }
             }
         }
     }
@@ -66,7 +66,7 @@ static int farthest_face(const chart_local *L, const double *dist)
 neuv_status chart_local_grow2(const chart_local *L, int *part)
 {
     double *dist = malloc(sizeof(double) * (size_t)(L->nf > 0 ? L->nf : 1));
-    if (!dist) return neuv_fail_nomem("region split");
+    if (!dist) return error_nomem("region split");
     int seed[2] = {0, 0};
     neuv_status st = chart_local_face_dijkstra(L, seed, NULL, 1, NULL, dist, NULL);
     if (st == NEUV_OK) {

@@ -21,23 +21,23 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
         if (s != NEUV_OK) return cli_fail(job->model, s);
         const char *what = job->input_name;
         if (md->category && job->lscm_baseline) {
-            s = neuv_fail(NEUV_ERR_INPUT, "--lscm-baseline needs a surface model, not a category model");
+            s = error_set(NEUV_ERR_INPUT, "--lscm-baseline needs a surface model, not a category model");
             what = job->model;
         } else if (md->category) {
             if (job->refine >= 0) md->refine = job->refine;
             if (job->check_inference) {
-                s = neuv_fail(NEUV_ERR_INPUT, "--check-inference needs a surface model, not a category model");
+                s = error_set(NEUV_ERR_INPUT, "--check-inference needs a surface model, not a category model");
                 what = job->model;
             } else if (job->save_model) {
-                s = neuv_fail(NEUV_ERR_INPUT, "--save-model with a category model would write that model again, "
+                s = error_set(NEUV_ERR_INPUT, "--save-model with a category model would write that model again, "
                                               "not this shape's (nor --finetune's weights); unwrap without --model to "
                                               "save a model of this shape");
                 what = job->model;
             } else if (job->shared_layer && job->finetune > 0) {
-                s = neuv_fail(NEUV_ERR_INPUT, "--shared-layer is for inference; --finetune trains the networks");
+                s = error_set(NEUV_ERR_INPUT, "--shared-layer is for inference; --finetune trains the networks");
             } else s = unwrap_with_category(mesh, md, opts, job->finetune, job->shared_layer, &r);
         } else if (job->finetune > 0 || job->refine >= 0 || job->shared_layer) {
-            s = neuv_fail(NEUV_ERR_INPUT, "a surface model is applied by inference only: --finetune, --refine and "
+            s = error_set(NEUV_ERR_INPUT, "a surface model is applied by inference only: --finetune, --refine and "
                                           "--shared-layer apply to category models (neuv train)");
             what = job->model;
         } else {

@@ -77,7 +77,7 @@ static neuv_status across_seam_distances(const neuv_mesh *a, const int *chart_a,
     int *idx = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
     double *q = malloc(sizeof(double) * 3 * (size_t)(n > 0 ? n : 1));
     int *face = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
-    if (!idx || !q || !face) { free(idx); free(q); free(face); return neuv_fail_nomem("UV comparison"); }
+    if (!idx || !q || !face) { free(idx); free(q); free(face); return error_nomem("UV comparison"); }
     for (int c = 0; c < n_charts_a && st == NEUV_OK; c++) {
         int k = 0;
         for (int w = 0; w < n; w++)
@@ -125,9 +125,9 @@ static void summarize(double *dist, int n, double *mean, double *p95, double *ma
 neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result *res)
 {
     memset(res, 0, sizeof *res);
-    if (a->nf <= 0 || b->nf <= 0) return neuv_fail(NEUV_ERR_INPUT, "both meshes need faces to compare UVs");
-    if (a->nuv <= 0 || !a->tri_uv) return neuv_fail(NEUV_ERR_INPUT, "the first mesh has no UVs");
-    if (b->nuv <= 0 || !b->tri_uv) return neuv_fail(NEUV_ERR_INPUT, "the second mesh has no UVs");
+    if (a->nf <= 0 || b->nf <= 0) return error_set(NEUV_ERR_INPUT, "both meshes need faces to compare UVs");
+    if (a->nuv <= 0 || !a->tri_uv) return error_set(NEUV_ERR_INPUT, "the first mesh has no UVs");
+    if (b->nuv <= 0 || !b->tri_uv) return error_set(NEUV_ERR_INPUT, "the second mesh has no UVs");
     size_t ncb = (size_t)b->nf * 3;
     neuv_status st = NEUV_OK;
     bvh tree;
@@ -256,7 +256,7 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     summarize(dist_any, nw, &res->nearest_mean, &res->nearest_p95, &res->nearest_max);
     goto done;
 nomem:
-    st = neuv_fail(NEUV_ERR_NOMEM, "out of memory comparing UV maps");
+    st = error_set(NEUV_ERR_NOMEM, "out of memory comparing UV maps");
 done:
     if (wedges_ok) edge_map_free(&wedges);
     if (pairs_ok) edge_map_free(&pairs);

@@ -27,11 +27,11 @@ neuv_status atomic_file_open(atomic_file *af, const char *target)
     memset(af, 0, sizeof *af);
     struct stat st;
     if (stat(target, &st) == 0 && S_ISDIR(st.st_mode))
-        return neuv_fail(NEUV_ERR_IO, "is a directory");
+        return error_set(NEUV_ERR_IO, "is a directory");
     char *dir = dir_of(target);
-    if (!dir) return neuv_fail_nomem("a path");
+    if (!dir) return error_nomem("a path");
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        neuv_status s = neuv_fail(NEUV_ERR_IO, "folder %s does not exist", dir);
+        neuv_status s = error_set(NEUV_ERR_IO, "folder %s does not exist", dir);
         free(dir);
         return s;
     }
@@ -39,11 +39,11 @@ neuv_status atomic_file_open(atomic_file *af, const char *target)
     size_t n = strlen(target) + 32;
     af->tmp_path = malloc(n);
     af->target = strdup(target);
-    if (!af->tmp_path || !af->target) { atomic_file_abort(af); return neuv_fail_nomem("a path"); }
+    if (!af->tmp_path || !af->target) { atomic_file_abort(af); return error_nomem("a path"); }
     snprintf(af->tmp_path, n, "%s.tmp-XXXXXX", target);
     int fd = mkstemp(af->tmp_path);
     if (fd < 0) {
-        neuv_status s = neuv_fail(NEUV_ERR_IO, "cannot create file: %s", strerror(errno));
+        neuv_status s = error_set(NEUV_ERR_IO, "cannot create file: %s", strerror(errno));
         free(af->tmp_path); af->tmp_path = NULL;
         atomic_file_abort(af);
         return s;
@@ -53,20 +53,20 @@ neuv_status atomic_file_open(atomic_file *af, const char *target)
     if (!af->fp) {
         close(fd);
         atomic_file_abort(af);
-        return neuv_fail(NEUV_ERR_IO, "cannot open file for writing");
+        return error_set(NEUV_ERR_IO, "cannot open file for writing");
     }
     return NEUV_OK;
 }
 
 neuv_status atomic_file_commit(atomic_file *af)
 {
-    if (!af->fp) { atomic_file_abort(af); return neuv_fail(NEUV_ERR_IO, "file was not open"); }
+    if (!af->fp) { atomic_file_abort(af); return error_set(NEUV_ERR_IO, "file was not open"); }
     int bad = ferror(af->fp) || fflush(af->fp) != 0 || fsync(fileno(af->fp)) != 0;
     if (fclose(af->fp) != 0) bad = 1;
     af->fp = NULL;
-    if (bad) { atomic_file_abort(af); return neuv_fail(NEUV_ERR_IO, "write failed (disk full?)"); }
+    if (bad) { atomic_file_abort(af); return error_set(NEUV_ERR_IO, "write failed (disk full?)"); }
     if (rename(af->tmp_path, af->target) != 0) {
-        neuv_status s = neuv_fail(NEUV_ERR_IO, "cannot rename into place: %s", strerror(errno));
+        neuv_status s = error_set(NEUV_ERR_IO, "cannot rename into place: %s", strerror(errno));
         atomic_file_abort(af);
         return s;
     }

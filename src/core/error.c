@@ -5,7 +5,7 @@
 
 static _Thread_local char last_error[512];
 
-neuv_status neuv_fail(neuv_status code, const char *fmt, ...)
+neuv_status error_set(neuv_status code, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -14,12 +14,12 @@ neuv_status neuv_fail(neuv_status code, const char *fmt, ...)
     return code;
 }
 
-neuv_status neuv_fail_nomem(const char *what)
+neuv_status error_nomem(const char *what)
 {
-    return neuv_fail(NEUV_ERR_NOMEM, "out of memory allocating %s", what);
+    return error_set(NEUV_ERR_NOMEM, "out of memory allocating %s", what);
 }
 
-void neuv_error_clear(void) { last_error[0] = '\0'; }
+void error_clear(void) { last_error[0] = '\0'; }
 
 const char *neuv_last_error(void) { return last_error; }
 

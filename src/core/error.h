@@ -5,11 +5,11 @@
 #include "neuv/neuv.h"
 
 /* Records a formatted message for neuv_last_error() and returns `code`,
- * so failures read `return neuv_fail(NEUV_ERR_INPUT, "face %d ...", f);`. */
-neuv_status neuv_fail(neuv_status code, const char *fmt, ...)
+ * so failures read `return error_set(NEUV_ERR_INPUT, "face %d ...", f);`. */
+neuv_status error_set(neuv_status code, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 /* Shorthand for an allocation failure of `what`. */
-neuv_status neuv_fail_nomem(const char *what);
-void neuv_error_clear(void);
+neuv_status error_nomem(const char *what);
+void error_clear(void);
 
 #endif

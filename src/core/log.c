@@ -14,7 +14,7 @@ void neuv_set_callbacks(neuv_log_fn log, neuv_progress_fn progress, void *user)
     callback_user = user;
 }
 
-void neuv_log(neuv_log_level level, const char *fmt, ...)
+void log_message(neuv_log_level level, const char *fmt, ...)
 {
     if (!log_fn) return;
     char buf[1024];
@@ -25,7 +25,7 @@ void neuv_log(neuv_log_level level, const char *fmt, ...)
     log_fn(callback_user, level, buf);
 }
 
-void neuv_progress(const char *stage, double fraction, const char *detail_fmt, ...)
+void log_progress(const char *stage, double fraction, const char *detail_fmt, ...)
 {
     if (!progress_fn) return;
     char buf[256];

@@ -4,9 +4,9 @@
 
 #include "neuv/neuv.h"
 
-void neuv_log(neuv_log_level level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void log_message(neuv_log_level level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Reports progress of `stage`; detail may be NULL. Cheap when no callback is set. */
-void neuv_progress(const char *stage, double fraction, const char *detail_fmt, ...)
+void log_progress(const char *stage, double fraction, const char *detail_fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
 #endif

@@ -10,12 +10,12 @@ neuv_status flatten_require_disk(const neuv_mesh *m, int **boundary, int *nbound
 {
     if (boundary) *boundary = NULL;
     if (nboundary) *nboundary = 0;
-    if (!m || m->nf <= 0) return neuv_fail(NEUV_ERR_INPUT, "not a disk: the mesh has no faces");
+    if (!m || m->nf <= 0) return error_set(NEUV_ERR_INPUT, "not a disk: the mesh has no faces");
     int *comp = malloc(sizeof(int) * (size_t)m->nf);
-    if (!comp) return neuv_fail_nomem("face components");
+    if (!comp) return error_nomem("face components");
     int ncomp = mesh_face_components(m, comp);
     free(comp);
-    if (ncomp < 0) return neuv_fail_nomem("face components");
+    if (ncomp < 0) return error_nomem("face components");
     component_topology t;
     neuv_status s = mesh_subset_topology(m, NULL, 0, &t);
     if (s) return s;
@@ -25,16 +25,16 @@ neuv_status flatten_require_disk(const neuv_mesh *m, int **boundary, int *nbound
         else snprintf(loops, sizeof loops, "%d boundary loop%s", t.boundary_loops, t.boundary_loops == 1 ? "" : "s");
         /* With several components the genus formula mixes them, so it is
          * named only for one. */
-        if (ncomp != 1) return neuv_fail(NEUV_ERR_INPUT, "not a disk: %d components, %s", ncomp, loops);
-        return neuv_fail(NEUV_ERR_INPUT, "not a disk: 1 component, %s, genus %d", loops, t.genus);
+        if (ncomp != 1) return error_set(NEUV_ERR_INPUT, "not a disk: %d components, %s", ncomp, loops);
+        return error_set(NEUV_ERR_INPUT, "not a disk: 1 component, %s, genus %d", loops, t.genus);
     }
     int *start = NULL, *verts = NULL;
     int nloops = mesh_boundary_loops(m, NULL, 0, &start, &verts);
-    if (nloops < 0) return neuv_fail_nomem("boundary loops");
+    if (nloops < 0) return error_nomem("boundary loops");
     if (nloops != 1 || start[1] - start[0] < 3) {
         int len = nloops >= 1 ? start[1] - start[0] : 0;
         free(start); free(verts);
-        return neuv_fail(NEUV_ERR_INPUT, "not a disk: boundary found as %d loop%s (first of %d vertices)",
+        return error_set(NEUV_ERR_INPUT, "not a disk: boundary found as %d loop%s (first of %d vertices)",
                          nloops, nloops == 1 ? "" : "s", len);
     }
     int len = start[1] - start[0];

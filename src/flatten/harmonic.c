@@ -28,7 +28,7 @@ neuv_status harmonic(const neuv_mesh *m, double *uv)
     sparse_matrix lap = {0}, lii = {0};
     triplet_list t = {0};
     cholesky *chol = NULL;
-    if (!index || !fixed || !seg) { s = neuv_fail_nomem("harmonic map"); goto done; }
+    if (!index || !fixed || !seg) { s = error_nomem("harmonic map"); goto done; }
 
     for (int v = 0; v < nv; v++) uv[2 * v] = uv[2 * v + 1] = 0.0;
     /* Boundary onto the unit circle, angle proportional to arc length. */
@@ -38,7 +38,7 @@ neuv_status harmonic(const neuv_mesh *m, double *uv)
         seg[k] = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
         total += seg[k];
     }
-    if (!(total > 0)) { s = neuv_fail(NEUV_ERR_INPUT, "harmonic map: the boundary loop has zero length"); goto done; }
+    if (!(total > 0)) { s = error_set(NEUV_ERR_INPUT, "harmonic map: the boundary loop has zero length"); goto done; }
     double run = 0;
     for (int k = 0; k < nb; k++) {
         double angle = 2.0 * M_PI * run / total;
@@ -52,7 +52,7 @@ neuv_status harmonic(const neuv_mesh *m, double *uv)
     int n = 0;
     {
         unsigned char *referenced = calloc((size_t)nv, 1);
-        if (!referenced) { s = neuv_fail_nomem("harmonic map"); goto done; }
+        if (!referenced) { s = error_nomem("harmonic map"); goto done; }
         for (int i = 0; i < 3 * m->nf; i++) referenced[m->tri[i]] = 1;
         for (int v = 0; v < nv; v++)
             if (referenced[v] && !fixed[v]) index[v] = n++;
@@ -62,7 +62,7 @@ neuv_status harmonic(const neuv_mesh *m, double *uv)
     if (n > 0) {
         rhs = calloc(2 * (size_t)n, sizeof(double));
         x = malloc(sizeof(double) * 2 * (size_t)n);
-        if (!rhs || !x) { s = neuv_fail_nomem("harmonic map"); goto done; }
+        if (!rhs || !x) { s = error_nomem("harmonic map"); goto done; }
         if ((s = triplets_init(&t, n, n, sparse_nnz(&lap)))) goto done;
         for (int r = 0; r < nv && !s; r++) {
             int i = index[r];
@@ -80,7 +80,7 @@ neuv_status harmonic(const neuv_mesh *m, double *uv)
         if (s) goto done;
         if ((s = sparse_from_triplets(&t, &lii))) goto done;
         s = cholesky_factor(&lii, &chol);
-        if (s == NEUV_ERR_INPUT) { s = neuv_fail(NEUV_ERR_INTERNAL, "harmonic map: the interior Laplacian is not positive definite"); goto done; }
+        if (s == NEUV_ERR_INPUT) { s = error_set(NEUV_ERR_INTERNAL, "harmonic map: the interior Laplacian is not positive definite"); goto done; }
         if (s) goto done;
         if ((s = cholesky_solve(chol, rhs, x, 2))) goto done;
         for (int v = 0; v < nv; v++)

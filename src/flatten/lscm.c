@@ -69,7 +69,7 @@ static neuv_status lscm_solve(const neuv_mesh *m, const int *pin, double pin_uv[
     triplet_list t = {0};
     sparse_matrix k = {0};
     cholesky *chol = NULL;
-    if (!dof || !used) { s = neuv_fail_nomem("LSCM unknowns"); goto done; }
+    if (!dof || !used) { s = error_nomem("LSCM unknowns"); goto done; }
     for (int i = 0; i < 3 * m->nf; i++) used[m->tri[i]] = 1;
     if (pin[0] >= 0) used[pin[0]] = used[pin[1]] = 0;
     int n = 0;
@@ -79,7 +79,7 @@ static neuv_status lscm_solve(const neuv_mesh *m, const int *pin, double pin_uv[
     }
     rhs = calloc((size_t)(n > 0 ? n : 1), sizeof(double));
     x = malloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
-    if (!rhs || !x) { s = neuv_fail_nomem("LSCM system"); goto done; }
+    if (!rhs || !x) { s = error_nomem("LSCM system"); goto done; }
     if ((s = triplets_init(&t, n, n, (size_t)m->nf * 72 + (size_t)n))) goto done;
 
     double mean_area = 0;
@@ -151,7 +151,7 @@ static neuv_status lscm_solve(const neuv_mesh *m, const int *pin, double pin_uv[
     }
     if (n > 0) {
         s = cholesky_factor(&k, &chol);
-        if (s == NEUV_ERR_INPUT) { s = neuv_fail(NEUV_ERR_INTERNAL, "LSCM: the normal equations are not positive definite"); goto done; }
+        if (s == NEUV_ERR_INPUT) { s = error_set(NEUV_ERR_INTERNAL, "LSCM: the normal equations are not positive definite"); goto done; }
         if (s) goto done;
         if ((s = cholesky_solve(chol, rhs, x, 1))) goto done;
     }
@@ -184,8 +184,8 @@ neuv_status lscm_anchored(const neuv_mesh *m, const double *anchor, double lambd
 {
     neuv_status s = flatten_require_disk(m, NULL, NULL);
     if (s) return s;
-    if (!(lambda > 0)) return neuv_fail(NEUV_ERR_INPUT, "anchored LSCM needs a positive weight, not %g", lambda);
+    if (!(lambda > 0)) return error_set(NEUV_ERR_INPUT, "anchored LSCM needs a positive weight, not %g", lambda);
     double area = mesh_total_area(m);
-    if (!(area > 0)) return neuv_fail(NEUV_ERR_INPUT, "anchored LSCM: the chart has no area");
+    if (!(area > 0)) return error_set(NEUV_ERR_INPUT, "anchored LSCM: the chart has no area");
     return lscm_solve(m, NULL, NULL, anchor, lambda / area, uv);
 }

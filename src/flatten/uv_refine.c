@@ -76,7 +76,7 @@ static neuv_status mark_boundary(refine_data *d, int n_charts)
     d->bi = malloc(sizeof(int) * (size_t)(d->ne > 0 ? d->ne : 1));
     d->bj = malloc(sizeof(int) * (size_t)(d->ne > 0 ? d->ne : 1));
     d->bfirst = calloc((size_t)n_charts + 1, sizeof(int));
-    if (!key || !d->vbound || !d->bi || !d->bj || !d->bfirst) { free(key); return neuv_fail_nomem("UV refinement"); }
+    if (!key || !d->vbound || !d->bi || !d->bj || !d->bfirst) { free(key); return error_nomem("UV refinement"); }
     for (int e = 0; e < d->ne; e++) {
         unsigned long long a = (unsigned)d->ei[e], b = (unsigned)d->ej[e];
         key[e] = a < b ? a << 32 | b : b << 32 | a;
@@ -130,7 +130,7 @@ static neuv_status refine_data_build(const neuv_mesh *m, const int *face_chart, 
     neuv_status s = NEUV_OK;
     if (!order || !first || !stamp || !local || !pos || !edge_sum || !d->tri || !d->fmesh || !d->fchart ||
         !d->ei || !d->ej || !d->elen || !d->cos3d || !d->area3d || !d->frame_inv || !d->weight || !d->orient || !d->uv0 || !d->scale || !d->vfirst) {
-        s = neuv_fail_nomem("UV refinement");
+        s = error_nomem("UV refinement");
         goto done;
     }
     /* Faces grouped by chart (counting sort keeps mesh order inside a chart). */
@@ -138,7 +138,7 @@ static neuv_status refine_data_build(const neuv_mesh *m, const int *face_chart, 
     for (int c = 0; c < n_charts; c++) first[c + 1] += first[c];
     {
         int *fill = malloc(sizeof(int) * (size_t)n_charts);
-        if (!fill) { s = neuv_fail_nomem("UV refinement"); goto done; }
+        if (!fill) { s = error_nomem("UV refinement"); goto done; }
         memcpy(fill, first, sizeof(int) * (size_t)n_charts);
         for (int f = 0; f < nf; f++) order[fill[face_chart[f]]++] = f;
         free(fill);
@@ -182,7 +182,7 @@ static neuv_status refine_data_build(const neuv_mesh *m, const int *face_chart, 
     /* Scale positions and UVs per chart vertex (every vertex's chart is its faces' chart). */
     {
         int *vchart = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
-        if (!vchart) { s = neuv_fail_nomem("UV refinement"); goto done; }
+        if (!vchart) { s = error_nomem("UV refinement"); goto done; }
         for (int k = 0; k < nf; k++)
             for (int q = 0; q < 3; q++) vchart[d->tri[3 * k + q]] = d->fchart[k];
         for (int i = 0; i < nv; i++) {
@@ -355,13 +355,13 @@ neuv_status uv_refine(const neuv_mesh *m, const int *face_chart, int n_charts, c
     if (!rep) rep = &local_rep;
     memset(rep, 0, sizeof *rep);
     if (!m || !face_chart || !corner_uv || !o || n_charts < 1)
-        return neuv_fail(NEUV_ERR_INPUT, "UV refinement needs a mesh, charts, UVs and options");
+        return error_set(NEUV_ERR_INPUT, "UV refinement needs a mesh, charts, UVs and options");
     if (o->iters <= 0) return NEUV_OK;
     if (!(o->lr > 0) || !(o->fold_eps >= 0) || (o->accept && o->check_every < 1))
-        return neuv_fail(NEUV_ERR_INPUT, "bad UV refinement options (rate %g, check every %d)", o->lr, o->check_every);
+        return error_set(NEUV_ERR_INPUT, "bad UV refinement options (rate %g, check every %d)", o->lr, o->check_every);
     for (int f = 0; f < m->nf; f++)
         if (face_chart[f] < 0 || face_chart[f] >= n_charts)
-            return neuv_fail(NEUV_ERR_INPUT, "face %d has chart %d outside 0..%d", f, face_chart[f], n_charts - 1);
+            return error_set(NEUV_ERR_INPUT, "face %d has chart %d outside 0..%d", f, face_chart[f], n_charts - 1);
     double t0 = now_seconds();
     refine_data d;
     neuv_status s = refine_data_build(m, face_chart, n_charts, corner_uv, &d);
@@ -377,7 +377,7 @@ neuv_status uv_refine(const neuv_mesh *m, const int *face_chart, int n_charts, c
     unsigned char *pinned = calloc((size_t)(d.nv > 0 ? d.nv : 1), 1), *mark = calloc((size_t)(d.nv > 0 ? d.nv : 1), 1);
     float *snap = malloc(sizeof(float) * 2 * (size_t)(d.nv > 0 ? d.nv : 1));
     nn_tensor *uv = nn_params_add(&params, d.nv, 2, "uv");
-    if (!sum || !bad0 || !bad1 || !fails || !pinned || !mark || !snap || !uv) { s = neuv_fail_nomem("UV refinement"); goto done; }
+    if (!sum || !bad0 || !bad1 || !fails || !pinned || !mark || !snap || !uv) { s = error_nomem("UV refinement"); goto done; }
     memcpy(uv->data, d.uv0, sizeof(float) * 2 * (size_t)d.nv);
     memcpy(snap, d.uv0, sizeof(float) * 2 * (size_t)d.nv);
     chart_orientation(&d, d.uv0, n_charts, sum);
@@ -392,7 +392,7 @@ neuv_status uv_refine(const neuv_mesh *m, const int *face_chart, int n_charts, c
     s = nn_adam_init(&adam, &params, &ac);
     if (s != NEUV_OK) goto done;
     ctx = nn_ctx_create(0);
-    if (!ctx) { s = neuv_fail_nomem("UV refinement"); goto done; }
+    if (!ctx) { s = error_nomem("UV refinement"); goto done; }
     int n_frozen = 0;
     for (int it = 0; it < o->iters && n_frozen < n_charts; it++) {
         nn_ctx_reset(ctx);
@@ -401,7 +401,7 @@ neuv_status uv_refine(const neuv_mesh *m, const int *face_chart, int n_charts, c
         s = nn_backward(ctx, loss);
         if (s != NEUV_OK) goto done;
         if (!isfinite(loss->data[0])) {
-            s = neuv_fail(NEUV_ERR_INTERNAL, "UV refinement loss is not finite at step %d", it);
+            s = error_set(NEUV_ERR_INTERNAL, "UV refinement loss is not finite at step %d", it);
             goto done;
         }
         if (it == 0) rep->loss_start = loss->data[0];
@@ -411,13 +411,13 @@ neuv_status uv_refine(const neuv_mesh *m, const int *face_chart, int n_charts, c
             if (pinned[i]) { uv->data[2 * i] = snap[2 * i]; uv->data[2 * i + 1] = snap[2 * i + 1]; }
         rep->iters = it + 1;
         if (it % 50 == 0 || it == o->iters - 1)
-            neuv_progress("refine", (double)(it + 1) / o->iters, "step %d loss %.5f", it + 1, rep->loss_end);
+            log_progress("refine", (double)(it + 1) / o->iters, "step %d loss %.5f", it + 1, rep->loss_end);
         if (!o->accept || ((it + 1) % o->check_every != 0 && it != o->iters - 1)) continue;
         for (int c = 0; c < n_charts; c++) {
             if (fails[c] == FROZEN) continue;
             write_chart(&d, uv->data, c, corner_uv);
             int ok = o->accept(o->accept_user, c, corner_uv);
-            if (ok < 0) { s = neuv_fail_nomem("UV refinement check"); goto done; }
+            if (ok < 0) { s = error_nomem("UV refinement check"); goto done; }
             if (ok) { copy_chart(&d, c, snap, uv->data); continue; }
             /* Back to the last accepted map, with the boundary vertices near
              * where the boundary met itself held there from now on; a chart
@@ -455,10 +455,10 @@ done:
 
 neuv_status uv_refine_chart(const neuv_mesh *sub, const uv_refine_options *o, double *uv, uv_refine_report *rep)
 {
-    if (!sub || !uv) return neuv_fail(NEUV_ERR_INPUT, "UV refinement needs a chart and its UVs");
+    if (!sub || !uv) return error_set(NEUV_ERR_INPUT, "UV refinement needs a chart and its UVs");
     int *zero = calloc((size_t)(sub->nf > 0 ? sub->nf : 1), sizeof(int));
     double *corner = malloc(sizeof(double) * 6 * (size_t)(sub->nf > 0 ? sub->nf : 1));
-    if (!zero || !corner) { free(zero); free(corner); return neuv_fail_nomem("UV refinement"); }
+    if (!zero || !corner) { free(zero); free(corner); return error_nomem("UV refinement"); }
     for (int f = 0; f < sub->nf; f++)
         for (int q = 0; q < 3; q++) {
             int v = sub->tri[3 * f + q];

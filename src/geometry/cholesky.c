@@ -47,38 +47,38 @@ neuv_status cholesky_factor(const sparse_matrix *a, cholesky **out)
 {
     *out = NULL;
     if (a->rows != a->cols || a->rows <= 0)
-        return neuv_fail(NEUV_ERR_INTERNAL, "cholesky: matrix is %d by %d, expected square and non-empty", a->rows, a->cols);
+        return error_set(NEUV_ERR_INTERNAL, "cholesky: matrix is %d by %d, expected square and non-empty", a->rows, a->cols);
     cholesky *c = calloc(1, sizeof *c);
-    if (!c) return neuv_fail_nomem("Cholesky factor");
+    if (!c) return error_nomem("Cholesky factor");
     c->n = a->rows;
     cholmod_start(&c->common);
     c->common.supernodal = CHOLMOD_SUPERNODAL;
     c->common.print = 0;
-    /* CHOLMOD's default error handler prints to stderr; the library reports through neuv_fail instead. */
+    /* CHOLMOD's default error handler prints to stderr; the library reports through error_set instead. */
     c->common.error_handler = NULL;
 
     cholmod_sparse *s = lower_triangle(a, &c->common);
-    if (!s) { cholesky_free(c); return neuv_fail_nomem("Cholesky input matrix"); }
+    if (!s) { cholesky_free(c); return error_nomem("Cholesky input matrix"); }
     c->factor = cholmod_analyze(s, &c->common);
     if (!c->factor) {
         cholmod_free_sparse(&s, &c->common);
         int st = c->common.status;
         cholesky_free(c);
-        return st == CHOLMOD_OUT_OF_MEMORY ? neuv_fail_nomem("Cholesky analysis")
-                                           : neuv_fail(NEUV_ERR_INTERNAL, "cholesky: analysis failed (CHOLMOD status %d)", st);
+        return st == CHOLMOD_OUT_OF_MEMORY ? error_nomem("Cholesky analysis")
+                                           : error_set(NEUV_ERR_INTERNAL, "cholesky: analysis failed (CHOLMOD status %d)", st);
     }
     int ok = cholmod_factorize(s, c->factor, &c->common);
     cholmod_free_sparse(&s, &c->common);
     int st = c->common.status;
     if (!ok || st == CHOLMOD_OUT_OF_MEMORY) {
         cholesky_free(c);
-        return st == CHOLMOD_OUT_OF_MEMORY ? neuv_fail_nomem("Cholesky factorization")
-                                           : neuv_fail(NEUV_ERR_INTERNAL, "cholesky: factorization failed (CHOLMOD status %d)", st);
+        return st == CHOLMOD_OUT_OF_MEMORY ? error_nomem("Cholesky factorization")
+                                           : error_set(NEUV_ERR_INTERNAL, "cholesky: factorization failed (CHOLMOD status %d)", st);
     }
     if (st == CHOLMOD_NOT_POSDEF || c->factor->minor < (size_t)c->n) {
         size_t minor = c->factor->minor;
         cholesky_free(c);
-        return neuv_fail(NEUV_ERR_INPUT, "matrix is not positive definite (pivot %zu of %d)", minor, a->rows);
+        return error_set(NEUV_ERR_INPUT, "matrix is not positive definite (pivot %zu of %d)", minor, a->rows);
     }
     *out = c;
     return NEUV_OK;
@@ -98,8 +98,8 @@ neuv_status cholesky_solve(cholesky *c, const double *b, double *x, int nrhs)
     bd.xtype = CHOLMOD_REAL;
     bd.dtype = CHOLMOD_DOUBLE;
     if (!cholmod_solve2(CHOLMOD_A, c->factor, &bd, NULL, &c->x, NULL, &c->y, &c->e, &c->common))
-        return c->common.status == CHOLMOD_OUT_OF_MEMORY ? neuv_fail_nomem("Cholesky solve")
-                                                         : neuv_fail(NEUV_ERR_INTERNAL, "cholesky: solve failed (CHOLMOD status %d)", c->common.status);
+        return c->common.status == CHOLMOD_OUT_OF_MEMORY ? error_nomem("Cholesky solve")
+                                                         : error_set(NEUV_ERR_INTERNAL, "cholesky: solve failed (CHOLMOD status %d)", c->common.status);
     memcpy(x, c->x->x, (size_t)c->n * (size_t)nrhs * sizeof *x);
     return NEUV_OK;
 }

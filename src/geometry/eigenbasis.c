@@ -64,7 +64,7 @@ static neuv_status eigen_dense(const sparse_matrix *L, const double *mass, int k
     double *s = calloc((size_t)n * n, sizeof *s);
     double *w = malloc((size_t)n * sizeof *w);
     double *isq = malloc((size_t)n * sizeof *isq);
-    if (!s || !w || !isq) { free(s); free(w); free(isq); return neuv_fail_nomem("dense eigen problem"); }
+    if (!s || !w || !isq) { free(s); free(w); free(isq); return error_nomem("dense eigen problem"); }
     for (int i = 0; i < n; i++) isq[i] = 1.0 / sqrt(mass[i]);
     for (int r = 0; r < n; r++)
         for (int p = L->row_start[r]; p < L->row_start[r + 1]; p++)
@@ -74,12 +74,12 @@ static neuv_status eigen_dense(const sparse_matrix *L, const double *mass, int k
     dsyev_("V", "U", &n, s, &n, w, &wq, &lwork, &info);
     lwork = info == 0 ? (int)wq : 3 * n;
     double *work = malloc((size_t)lwork * sizeof *work);
-    if (!work) { free(s); free(w); free(isq); return neuv_fail_nomem("dense eigen workspace"); }
+    if (!work) { free(s); free(w); free(isq); return error_nomem("dense eigen workspace"); }
     dsyev_("V", "U", &n, s, &n, w, work, &lwork, &info);
     free(work);
     if (info != 0) {
         free(s); free(w); free(isq);
-        return neuv_fail(NEUV_ERR_INTERNAL, "dense eigen solver failed (LAPACK dsyev info %d)", info);
+        return error_set(NEUV_ERR_INTERNAL, "dense eigen solver failed (LAPACK dsyev info %d)", info);
     }
     /* dsyev returns ascending eigenvalues with orthonormal eigenvector columns. */
     for (int a = 0; a < k; a++) {
@@ -119,7 +119,7 @@ static neuv_status eigen_arpack(const sparse_matrix *L, const double *mass, int 
     cholesky *chol = NULL;
     s = cholesky_factor(&shifted, &chol);
     sparse_free(&shifted);
-    if (s) return s == NEUV_ERR_INPUT ? neuv_fail(NEUV_ERR_INPUT, "Laplacian shifted by %g M is not positive definite", sigma) : s;
+    if (s) return s == NEUV_ERR_INPUT ? error_set(NEUV_ERR_INPUT, "Laplacian shifted by %g M is not positive definite", sigma) : s;
     info->factor_seconds = now_seconds() - t0;
     t0 = now_seconds();
 
@@ -134,7 +134,7 @@ static neuv_status eigen_arpack(const sparse_matrix *L, const double *mass, int 
     int *select = calloc((size_t)ncv, sizeof *select);
     double *d = malloc((size_t)ncv * sizeof *d);
     if (!resid || !v || !workd || !workl || !tmp || !select || !d) {
-        s = neuv_fail_nomem("eigen solver workspace");
+        s = error_nomem("eigen solver workspace");
         goto done;
     }
     /* Deterministic start vector (info = 1 tells ARPACK to use resid). */
@@ -172,11 +172,11 @@ static neuv_status eigen_arpack(const sparse_matrix *L, const double *mass, int 
     }
     info->restarts = iparam[2];
     if (ainfo < 0) {
-        s = neuv_fail(NEUV_ERR_INTERNAL, "eigen solver failed (ARPACK dsaupd info %d)", ainfo);
+        s = error_set(NEUV_ERR_INTERNAL, "eigen solver failed (ARPACK dsaupd info %d)", ainfo);
         goto done;
     }
     if (iparam[4] < k) {
-        s = neuv_fail(NEUV_ERR_INPUT, "eigen solver converged for %d of %d eigenpairs after %d restarts",
+        s = error_set(NEUV_ERR_INPUT, "eigen solver converged for %d of %d eigenpairs after %d restarts",
                       iparam[4], k, iparam[2]);
         goto done;
     }
@@ -184,7 +184,7 @@ static neuv_status eigen_arpack(const sparse_matrix *L, const double *mass, int 
     dseupd_c(1, "A", select, d, z, n, sigma, "G", n, "LM", k, tol, resid, ncv, v, n, iparam, ipntr, workd,
              workl, lworkl, &einfo);
     if (einfo != 0) {
-        s = neuv_fail(NEUV_ERR_INTERNAL, "eigen solver failed (ARPACK dseupd info %d)", einfo);
+        s = error_set(NEUV_ERR_INTERNAL, "eigen solver failed (ARPACK dseupd info %d)", einfo);
         goto done;
     }
     memcpy(evals, d, (size_t)k * sizeof *evals);
@@ -260,11 +260,11 @@ static neuv_status eigen_components(const sparse_matrix *L, const double *mass, 
     int **verts = calloc((size_t)ncomp, sizeof *verts);
     double **cev = calloc((size_t)ncomp, sizeof *cev), **cz = calloc((size_t)ncomp, sizeof *cz);
     candidate *cand = NULL;
-    if (!count || !local || !order || !kc || !verts || !cev || !cz) { s = neuv_fail_nomem("eigen components"); goto done; }
+    if (!count || !local || !order || !kc || !verts || !cev || !cz) { s = error_nomem("eigen components"); goto done; }
     for (int i = 0; i < n; i++) local[i] = count[label[i]]++;
     for (int c = 0; c < ncomp; c++) {
         verts[c] = malloc((size_t)count[c] * sizeof **verts);
-        if (!verts[c]) { s = neuv_fail_nomem("eigen components"); goto done; }
+        if (!verts[c]) { s = error_nomem("eigen components"); goto done; }
     }
     for (int i = 0; i < n; i++) verts[label[i]][local[i]] = i;
     /* Largest component first (ties by label), so the reported shift is its own. */
@@ -290,7 +290,7 @@ static neuv_status eigen_components(const sparse_matrix *L, const double *mass, 
         double *smass = malloc((size_t)nc * sizeof *smass);
         cev[c] = malloc((size_t)kc[c] * sizeof **cev);
         cz[c] = malloc((size_t)nc * kc[c] * sizeof **cz);
-        if (!s && (!smass || !cev[c] || !cz[c])) s = neuv_fail_nomem("eigen components");
+        if (!s && (!smass || !cev[c] || !cz[c])) s = error_nomem("eigen components");
         if (!s) s = sparse_from_triplets(&t, &sub);
         triplets_free(&t);
         if (!s) {
@@ -303,7 +303,7 @@ static neuv_status eigen_components(const sparse_matrix *L, const double *mass, 
     }
     if (s) goto done;
     cand = malloc(ncand * sizeof *cand);
-    if (!cand) { s = neuv_fail_nomem("eigen components"); goto done; }
+    if (!cand) { s = error_nomem("eigen components"); goto done; }
     size_t e = 0;
     for (int c = 0; c < ncomp; c++)
         for (int j = 0; j < kc[c]; j++) cand[e++] = (candidate){cev[c][j], c, j};
@@ -333,16 +333,16 @@ neuv_status eigenbasis(const sparse_matrix *L, const double *mass, int k,
     memset(info, 0, sizeof *info);
     info->dense = 1;
     int n = L->rows;
-    if (n <= 0 || L->cols != n) return neuv_fail(NEUV_ERR_INPUT, "eigenbasis: Laplacian is %d by %d", L->rows, L->cols);
-    if (k < 1 || k > n) return neuv_fail(NEUV_ERR_INPUT, "eigenbasis: asked for %d eigenpairs of a %d-vertex mesh", k, n);
+    if (n <= 0 || L->cols != n) return error_set(NEUV_ERR_INPUT, "eigenbasis: Laplacian is %d by %d", L->rows, L->cols);
+    if (k < 1 || k > n) return error_set(NEUV_ERR_INPUT, "eigenbasis: asked for %d eigenpairs of a %d-vertex mesh", k, n);
     for (int i = 0; i < n; i++)
         if (!(mass[i] > 0) || !isfinite(mass[i]))
-            return neuv_fail(NEUV_ERR_INPUT, "vertex %d has zero area (no non-degenerate face uses it)", i);
+            return error_set(NEUV_ERR_INPUT, "vertex %d has zero area (no non-degenerate face uses it)", i);
 
     /* Connected components of L's sparsity pattern. */
     union_find uf;
     int *label = malloc((size_t)n * sizeof *label);
-    if (!label || uf_init(&uf, n) != 0) { free(label); return neuv_fail_nomem("eigen components"); }
+    if (!label || uf_init(&uf, n) != 0) { free(label); return error_nomem("eigen components"); }
     for (int r = 0; r < n; r++)
         for (int p = L->row_start[r]; p < L->row_start[r + 1]; p++) uf_union(&uf, r, L->col[p]);
     info->components = uf_labels(&uf, label);
@@ -351,7 +351,7 @@ neuv_status eigenbasis(const sparse_matrix *L, const double *mass, int k,
     double *z = malloc((size_t)n * k * sizeof *z);
     double *ev = malloc((size_t)k * sizeof *ev);
     int *order = malloc((size_t)k * sizeof *order);
-    if (!z || !ev || !order) { free(label); free(z); free(ev); free(order); return neuv_fail_nomem("eigenvectors"); }
+    if (!z || !ev || !order) { free(label); free(z); free(ev); free(order); return error_nomem("eigenvectors"); }
 
     neuv_status s = info->components == 1 ? eigen_connected(L, mass, k, ev, z, info)
                                           : eigen_components(L, mass, k, info->components, label, ev, z, info);
@@ -361,7 +361,7 @@ neuv_status eigenbasis(const sparse_matrix *L, const double *mass, int k,
     sort_ascending(k, ev, order);
     /* Reorder columns, then check M-orthonormality in the sorted order. */
     double *zs = malloc((size_t)n * k * sizeof *zs);
-    if (!zs) { free(z); free(ev); free(order); return neuv_fail_nomem("eigenvectors"); }
+    if (!zs) { free(z); free(ev); free(order); return error_nomem("eigenvectors"); }
     for (int a = 0; a < k; a++) {
         evals[a] = ev[order[a]];
         memcpy(zs + (size_t)a * n, z + (size_t)order[a] * n, (size_t)n * sizeof *zs);
@@ -370,7 +370,7 @@ neuv_status eigenbasis(const sparse_matrix *L, const double *mass, int k,
 
     info->orth_error = m_orth_error(n, k, mass, zs);
     if (info->orth_error > 1e-10) {
-        neuv_log(NEUV_LOG_DEBUG, "eigenbasis: M-orthonormality error %.3g, re-orthonormalizing", info->orth_error);
+        log_message(NEUV_LOG_DEBUG, "eigenbasis: M-orthonormality error %.3g, re-orthonormalizing", info->orth_error);
         m_orthonormalize(n, k, mass, zs);
         info->orth_error = m_orth_error(n, k, mass, zs);
     }

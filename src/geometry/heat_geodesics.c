@@ -50,7 +50,7 @@ static neuv_status mark_boundary(const neuv_mesh *m, unsigned char *on_boundary)
 {
     size_t ne = (size_t)m->nf * 3;
     uint64_t *keys = malloc(sizeof *keys * (ne ? ne : 1));
-    if (!keys) return neuv_fail_nomem("edge list");
+    if (!keys) return error_nomem("edge list");
     for (int f = 0; f < m->nf; f++)
         for (int c = 0; c < 3; c++) {
             uint64_t a = (uint32_t)m->tri[3 * f + c], b = (uint32_t)m->tri[3 * f + (c + 1) % 3];
@@ -141,7 +141,7 @@ static neuv_status factor(const sparse_matrix *a, const char *what, cholesky **o
     if (s == NEUV_ERR_INPUT) {
         char why[256];
         snprintf(why, sizeof why, "%s", neuv_last_error());
-        return neuv_fail(NEUV_ERR_INTERNAL, "geodesics: %s system: %s", what, why);
+        return error_set(NEUV_ERR_INTERNAL, "geodesics: %s system: %s", what, why);
     }
     return s;
 }
@@ -150,14 +150,14 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
 {
     *out = NULL;
     if (!m || m->nv <= 0 || m->nf <= 0)
-        return neuv_fail(NEUV_ERR_INPUT, "geodesics need a mesh with faces");
+        return error_set(NEUV_ERR_INPUT, "geodesics need a mesh with faces");
     if (!(t_factor > 0)) t_factor = 1.0;
     for (int k = 0; k < 3 * m->nf; k++)
         if (m->tri[k] < 0 || m->tri[k] >= m->nv)
-            return neuv_fail(NEUV_ERR_INPUT, "face %d has vertex index %d out of range", k / 3, m->tri[k]);
+            return error_set(NEUV_ERR_INPUT, "face %d has vertex index %d out of range", k / 3, m->tri[k]);
 
     heat_geodesics *g = calloc(1, sizeof *g);
-    if (!g) return neuv_fail_nomem("heat geodesics");
+    if (!g) return error_nomem("heat geodesics");
     g->nv = m->nv;
     g->nf = m->nf;
     neuv_status s = NEUV_OK;
@@ -180,7 +180,7 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
     g->w_heat = malloc(sizeof(double) * block);
     if (!g->tri || !g->grad || !g->div || !g->component || !g->interior || !mass || !diag ||
         !on_boundary || !g->w_src || !g->w_heat) {
-        s = neuv_fail_nomem("heat geodesics");
+        s = error_nomem("heat geodesics");
         goto done;
     }
     memcpy(g->tri, m->tri, sizeof(int) * 3 * (size_t)m->nf);
@@ -196,7 +196,7 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
         }
     double h = sum_len / (3.0 * m->nf);
     if (!(h > 0) || !isfinite(h)) {
-        s = neuv_fail(NEUV_ERR_INPUT, "geodesics: mean edge length is %g", h);
+        s = error_set(NEUV_ERR_INPUT, "geodesics: mean edge length is %g", h);
         goto done;
     }
     g->t = t_factor * h * h;
@@ -204,7 +204,7 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
     for (int f = 0; f < m->nf; f++)
         face_operators(m, f, area_floor, g->grad + 9 * (size_t)f, g->div + 9 * (size_t)f);
 
-    if (uf_init(&uf, m->nv)) { s = neuv_fail_nomem("vertex components"); goto done; }
+    if (uf_init(&uf, m->nv)) { s = error_nomem("vertex components"); goto done; }
     uf_ok = 1;
     for (int f = 0; f < m->nf; f++) {
         uf_union(&uf, m->tri[3 * f], m->tri[3 * f + 1]);
@@ -212,7 +212,7 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
     }
     g->ncomponents = uf_labels(&uf, g->component);
     g->w_reached = calloc((size_t)g->ncomponents, 1);
-    if (!g->w_reached) { s = neuv_fail_nomem("heat geodesics"); goto done; }
+    if (!g->w_reached) { s = error_nomem("heat geodesics"); goto done; }
 
     if ((s = cotan_laplacian(m, &lap))) goto done;
     lumped_mass(m, mass);
@@ -238,7 +238,7 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
         if (s) goto done;
         g->w_int = malloc(sizeof(double) * (size_t)g->ninterior * HEAT_GEODESICS_BLOCK);
         g->w_int2 = malloc(sizeof(double) * (size_t)g->ninterior * HEAT_GEODESICS_BLOCK);
-        if (!g->w_int || !g->w_int2) { s = neuv_fail_nomem("heat geodesics"); goto done; }
+        if (!g->w_int || !g->w_int2) { s = error_nomem("heat geodesics"); goto done; }
     }
 
     /* Poisson: L is singular (constants on each component). Doubling the
@@ -374,10 +374,10 @@ static void shift_to_sources(heat_geodesics *g, double *phi, const int *sources,
 
 static neuv_status check_vertices(const heat_geodesics *g, const int *v, int n)
 {
-    if (n <= 0) return neuv_fail(NEUV_ERR_INPUT, "geodesics need at least one source");
+    if (n <= 0) return error_set(NEUV_ERR_INPUT, "geodesics need at least one source");
     for (int k = 0; k < n; k++)
         if (v[k] < 0 || v[k] >= g->nv)
-            return neuv_fail(NEUV_ERR_INPUT, "source vertex %d is out of range (the mesh has %d vertices)", v[k], g->nv);
+            return error_set(NEUV_ERR_INPUT, "source vertex %d is out of range (the mesh has %d vertices)", v[k], g->nv);
     return NEUV_OK;
 }
 
@@ -434,7 +434,7 @@ static neuv_status pairs_push(geodesic_pairs *p, int i, int j, double d)
         if (nj) p->j = nj;
         double *nd = realloc(p->d, sizeof(double) * cap);
         if (nd) p->d = nd;
-        if (!ni || !nj || !nd) return neuv_fail_nomem("geodesic pair list");
+        if (!ni || !nj || !nd) return error_nomem("geodesic pair list");
         p->cap = cap;
     }
     p->i[p->n] = i;
@@ -453,12 +453,12 @@ neuv_status heat_geodesics_pairs_within(heat_geodesics *g, double radius, const 
     if (!(radius > 0)) return NEUV_OK;
     /* Targets in ascending order so each pair is found once, from its smaller index. */
     int *targets = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
-    if (!targets) return neuv_fail_nomem("geodesic pair targets");
+    if (!targets) return error_nomem("geodesic pair targets");
     for (int k = 0; k < n; k++) targets[k] = subset ? subset[k] : k;
     if (subset) {
         /* Ascending order and no duplicates, through a mark array (O(V)). */
         unsigned char *mark = calloc((size_t)g->nv, 1);
-        if (!mark) { free(targets); return neuv_fail_nomem("geodesic pair targets"); }
+        if (!mark) { free(targets); return error_nomem("geodesic pair targets"); }
         for (int k = 0; k < n; k++) mark[subset[k]] = 1;
         n = 0;
         for (int v = 0; v < g->nv; v++) if (mark[v]) targets[n++] = v;
@@ -478,7 +478,7 @@ neuv_status heat_geodesics_pairs_within(heat_geodesics *g, double radius, const 
             for (int q = b0 + c + 1; q < n && !s; q++)
                 if (col[targets[q]] < radius) s = pairs_push(out, src, targets[q], col[targets[q]]);
         }
-        neuv_progress("geodesic pairs", (double)(b0 + k) / n, "%zu pairs", out->n);
+        log_progress("geodesic pairs", (double)(b0 + k) / n, "%zu pairs", out->n);
     }
     free(targets);
     return s;
@@ -488,12 +488,12 @@ neuv_status heat_geodesics_face_distances(heat_geodesics *g, const neuv_mesh *m,
                                           const int *source_faces, int nsources, double *dist)
 {
     if (m->nf != g->nf || m->nv != g->nv)
-        return neuv_fail(NEUV_ERR_INPUT, "face distances: mesh has %d vertices and %d faces, geodesics were built for %d and %d",
+        return error_set(NEUV_ERR_INPUT, "face distances: mesh has %d vertices and %d faces, geodesics were built for %d and %d",
                          m->nv, m->nf, g->nv, g->nf);
-    if (nsources <= 0) return neuv_fail(NEUV_ERR_INPUT, "face distances need at least one source face");
+    if (nsources <= 0) return error_set(NEUV_ERR_INPUT, "face distances need at least one source face");
     for (int k = 0; k < nsources; k++)
         if (source_faces[k] < 0 || source_faces[k] >= g->nf)
-            return neuv_fail(NEUV_ERR_INPUT, "source face %d is out of range (the mesh has %d faces)", source_faces[k], g->nf);
+            return error_set(NEUV_ERR_INPUT, "source face %d is out of range (the mesh has %d faces)", source_faces[k], g->nf);
     const size_t nv = (size_t)g->nv, nf = (size_t)g->nf;
     for (int b0 = 0; b0 < nsources; b0 += HEAT_GEODESICS_BLOCK) {
         int k = nsources - b0 < HEAT_GEODESICS_BLOCK ? nsources - b0 : HEAT_GEODESICS_BLOCK;
@@ -538,7 +538,7 @@ neuv_status heat_geodesics_diameter(heat_geodesics *g, double *diameter)
     int *start = malloc(sizeof(int) * (size_t)g->ncomponents);
     int *far = malloc(sizeof(int) * (size_t)g->ncomponents);
     double *col = malloc(sizeof(double) * (size_t)g->nv);
-    if (!start || !far || !col) { free(start); free(far); free(col); return neuv_fail_nomem("diameter"); }
+    if (!start || !far || !col) { free(start); free(far); free(col); return error_nomem("diameter"); }
     for (int c = 0; c < g->ncomponents; c++) start[c] = -1;
     for (int f = 0; f < g->nf; f++) {
         int v = g->tri[3 * f], c = g->component[v];

@@ -27,7 +27,7 @@ neuv_status heat_kernel_signature(int nv, int k, const double *evals, const doub
 {
     /* w[a][j] = A exp(−λ_a t_j), so the per-vertex loop is multiply-adds only. */
     double *w = malloc(((size_t)k * n + 1) * sizeof *w);
-    if (!w) return neuv_fail_nomem("heat kernel signature");
+    if (!w) return error_nomem("heat kernel signature");
     for (int a = 0; a < k; a++)
         for (int j = 0; j < n; j++)
             /* Zero eigenvalues (round-off slightly negative) decay as exp(0). */

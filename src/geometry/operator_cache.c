@@ -62,11 +62,11 @@ neuv_status operator_cache_dir(char **dir)
         d = malloc(strlen(home) + 16);
         if (d) sprintf(d, "%s/.cache/neuv", home);
     } else {
-        return neuv_fail(NEUV_ERR_IO, "no cache folder: neither XDG_CACHE_HOME nor HOME is set");
+        return error_set(NEUV_ERR_IO, "no cache folder: neither XDG_CACHE_HOME nor HOME is set");
     }
-    if (!d) return neuv_fail_nomem("cache path");
+    if (!d) return error_nomem("cache path");
     if (make_dirs(d) != 0) {
-        neuv_status s = neuv_fail(NEUV_ERR_IO, "cannot create cache folder %s: %s", d, strerror(errno));
+        neuv_status s = error_set(NEUV_ERR_IO, "cannot create cache folder %s: %s", d, strerror(errno));
         free(d);
         return s;
     }
@@ -142,7 +142,7 @@ neuv_status operator_cache_save(const char *path, uint64_t key, const operators 
     put(&w, &crc, 4);
     if (w.bad) {
         atomic_file_abort(&af);
-        return neuv_fail(NEUV_ERR_IO, "cannot write cache file %s", path);
+        return error_set(NEUV_ERR_IO, "cannot write cache file %s", path);
     }
     return atomic_file_commit(&af);
 }
@@ -192,14 +192,14 @@ static int take_sparse(reader *r, int n, int64_t nnz, sparse_matrix *a)
 
 static neuv_status bad_file(const char *path, const char *what)
 {
-    return neuv_fail(NEUV_ERR_IO, "cache file %s: %s", path, what);
+    return error_set(NEUV_ERR_IO, "cache file %s: %s", path, what);
 }
 
 neuv_status operator_cache_load(const char *path, uint64_t key, int nv, int k, int n_hks, operators *ops)
 {
     memset(ops, 0, sizeof *ops);
     FILE *fp = fopen(path, "rb");
-    if (!fp) return neuv_fail(NEUV_ERR_IO, "cache file %s: %s", path, strerror(errno));
+    if (!fp) return error_set(NEUV_ERR_IO, "cache file %s: %s", path, strerror(errno));
     unsigned char hb[72]; /* the header fields below, packed */
     cache_header h;
     reader hr = {hb, sizeof hb};
@@ -238,7 +238,7 @@ neuv_status operator_cache_load(const char *path, uint64_t key, int nv, int k, i
         return bad_file(path, "length does not match its header (truncated?)");
     }
     unsigned char *buf = malloc(total);
-    if (!buf) { fclose(fp); return neuv_fail_nomem("cache file"); }
+    if (!buf) { fclose(fp); return error_nomem("cache file"); }
     memcpy(buf, hb, sizeof hb);
     size_t got = fread(buf + sizeof hb, 1, total - sizeof hb, fp);
     fclose(fp);
@@ -274,7 +274,7 @@ neuv_status operator_cache_load(const char *path, uint64_t key, int nv, int k, i
     free(buf);
     if (rc) {
         operators_free(ops);
-        return rc == -2 ? neuv_fail_nomem("cached operators") : bad_file(path, "inconsistent contents");
+        return rc == -2 ? error_nomem("cached operators") : bad_file(path, "inconsistent contents");
     }
     return NEUV_OK;
 }
@@ -295,7 +295,7 @@ neuv_status operators_get(const neuv_mesh *m, const operators_params *params, in
         path = malloc(strlen(dir) + 32);
         if (path) sprintf(path, "%s/ops-%016llx.bin", dir, (unsigned long long)key);
     } else {
-        neuv_log(NEUV_LOG_DEBUG, "operator cache off: %s", neuv_last_error());
+        log_message(NEUV_LOG_DEBUG, "operator cache off: %s", neuv_last_error());
     }
     free(dir);
     if (path) {
@@ -308,16 +308,16 @@ neuv_status operators_get(const neuv_mesh *m, const operators_params *params, in
                 ops->seconds.total = ops->seconds.cache_load;
                 if (cache_hit) *cache_hit = 1;
                 if (cache_path) *cache_path = path; else free(path);
-                neuv_progress("operators", 1.0, "from cache");
+                log_progress("operators", 1.0, "from cache");
                 return NEUV_OK;
             }
-            neuv_log(NEUV_LOG_DEBUG, "ignoring operator cache: %s", neuv_last_error());
+            log_message(NEUV_LOG_DEBUG, "ignoring operator cache: %s", neuv_last_error());
         }
     }
     neuv_status s = operators_compute(m, &p, ops);
     if (s) { free(path); return s; }
     if (path && operator_cache_save(path, key, ops) != NEUV_OK)
-        neuv_log(NEUV_LOG_DEBUG, "operator cache not written: %s", neuv_last_error());
+        log_message(NEUV_LOG_DEBUG, "operator cache not written: %s", neuv_last_error());
     if (cache_path) *cache_path = path; else free(path);
     return NEUV_OK;
 }

@@ -40,26 +40,26 @@ neuv_status operators_compute(const neuv_mesh *m, const operators_params *params
     memset(ops, 0, sizeof *ops);
     operators_params p = params ? *params : operators_default_params();
     if (!m || m->nv <= 0 || m->nf <= 0)
-        return neuv_fail(NEUV_ERR_INPUT, "operators need a mesh with faces (got %d vertices, %d faces)",
+        return error_set(NEUV_ERR_INPUT, "operators need a mesh with faces (got %d vertices, %d faces)",
                          m ? m->nv : 0, m ? m->nf : 0);
     if (p.k < 1 || p.n_hks < 1)
-        return neuv_fail(NEUV_ERR_INPUT, "operators: k (%d) and the number of HKS times (%d) must be positive",
+        return error_set(NEUV_ERR_INPUT, "operators: k (%d) and the number of HKS times (%d) must be positive",
                          p.k, p.n_hks);
     for (size_t i = 0; i < (size_t)m->nv * 3; i++)
-        if (!isfinite(m->pos[i])) return neuv_fail(NEUV_ERR_INPUT, "vertex %zu has a non-finite coordinate", i / 3);
+        if (!isfinite(m->pos[i])) return error_set(NEUV_ERR_INPUT, "vertex %zu has a non-finite coordinate", i / 3);
     for (size_t i = 0; i < (size_t)m->nf * 3; i++)
         if (m->tri[i] < 0 || m->tri[i] >= m->nv)
-            return neuv_fail(NEUV_ERR_INPUT, "face %zu uses vertex %d of %d", i / 3, m->tri[i], m->nv);
+            return error_set(NEUV_ERR_INPUT, "face %zu uses vertex %d of %d", i / 3, m->tri[i], m->nv);
 
     int nv = m->nv, k = p.k < nv ? p.k : nv;
-    if (k < p.k) neuv_log(NEUV_LOG_INFO, "operators: %d eigenpairs asked of a %d-vertex mesh, computing %d", p.k, nv, k);
+    if (k < p.k) log_message(NEUV_LOG_INFO, "operators: %d eigenpairs asked of a %d-vertex mesh, computing %d", p.k, nv, k);
     ops->nv = nv;
     ops->k = k;
     ops->n_hks = p.n_hks;
     double t_all = now_seconds(), t0 = t_all;
     neuv_status s;
 
-    neuv_progress("operators", 0.0, "laplacian");
+    log_progress("operators", 0.0, "laplacian");
     ops->mass = malloc((size_t)nv * sizeof *ops->mass);
     ops->evals = malloc((size_t)k * sizeof *ops->evals);
     ops->evecs = malloc((size_t)nv * k * sizeof *ops->evecs);
@@ -67,29 +67,29 @@ neuv_status operators_compute(const neuv_mesh *m, const operators_params *params
     ops->hks = malloc((size_t)nv * p.n_hks * sizeof *ops->hks);
     ops->hks_times = malloc((size_t)p.n_hks * sizeof *ops->hks_times);
     if (!ops->mass || !ops->evals || !ops->evecs || !ops->frames || !ops->hks || !ops->hks_times) {
-        s = neuv_fail_nomem("geometry operators");
+        s = error_nomem("geometry operators");
         goto fail;
     }
     if ((s = cotan_laplacian(m, &ops->L))) goto fail;
     lumped_mass(m, ops->mass);
     ops->seconds.laplacian = now_seconds() - t0;
 
-    neuv_progress("operators", 0.1, "eigenpairs (k = %d)", k);
+    log_progress("operators", 0.1, "eigenpairs (k = %d)", k);
     eigenbasis_info info;
     if ((s = eigenbasis(&ops->L, ops->mass, k, ops->evals, ops->evecs, &info))) goto fail;
     ops->sigma = info.sigma;
     ops->seconds.factor = info.factor_seconds;
     ops->seconds.eigen = info.solve_seconds;
-    neuv_log(NEUV_LOG_DEBUG, "eigenbasis: %s, sigma %.3g, %d restarts, %d solves, M-orthonormality error %.2g",
+    log_message(NEUV_LOG_DEBUG, "eigenbasis: %s, sigma %.3g, %d restarts, %d solves, M-orthonormality error %.2g",
              info.dense ? "dense" : "ARPACK shift-invert", info.sigma, info.restarts, info.op_applies, info.orth_error);
 
-    neuv_progress("operators", 0.8, "gradients");
+    log_progress("operators", 0.8, "gradients");
     t0 = now_seconds();
     tangent_frames(m, ops->frames);
     if ((s = spatial_gradient(m, ops->frames, &ops->grad_x, &ops->grad_y))) goto fail;
     ops->seconds.gradients = now_seconds() - t0;
 
-    neuv_progress("operators", 0.9, "heat kernel signature");
+    log_progress("operators", 0.9, "heat kernel signature");
     t0 = now_seconds();
     double area = 0.0;
     for (int i = 0; i < nv; i++) area += ops->mass[i];
@@ -97,7 +97,7 @@ neuv_status operators_compute(const neuv_mesh *m, const operators_params *params
     if ((s = heat_kernel_signature(nv, k, ops->evals, ops->evecs, area, p.n_hks, ops->hks_times, ops->hks))) goto fail;
     ops->seconds.hks = now_seconds() - t0;
     ops->seconds.total = now_seconds() - t_all;
-    neuv_progress("operators", 1.0, NULL);
+    log_progress("operators", 1.0, NULL);
     return NEUV_OK;
 
 fail:

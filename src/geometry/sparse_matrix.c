@@ -8,7 +8,7 @@
 neuv_status triplets_init(triplet_list *t, int rows, int cols, size_t reserve)
 {
     memset(t, 0, sizeof *t);
-    if (rows < 0 || cols < 0) return neuv_fail(NEUV_ERR_INTERNAL, "triplets_init: negative size %d by %d", rows, cols);
+    if (rows < 0 || cols < 0) return error_set(NEUV_ERR_INTERNAL, "triplets_init: negative size %d by %d", rows, cols);
     t->rows = rows;
     t->cols = cols;
     if (reserve < 16) reserve = 16;
@@ -17,7 +17,7 @@ neuv_status triplets_init(triplet_list *t, int rows, int cols, size_t reserve)
     t->v = malloc(reserve * sizeof *t->v);
     if (!t->i || !t->j || !t->v) {
         triplets_free(t);
-        return neuv_fail_nomem("sparse matrix triplets");
+        return error_nomem("sparse matrix triplets");
     }
     t->cap = reserve;
     return NEUV_OK;
@@ -26,19 +26,19 @@ neuv_status triplets_init(triplet_list *t, int rows, int cols, size_t reserve)
 neuv_status triplets_add(triplet_list *t, int i, int j, double v)
 {
     if (i < 0 || i >= t->rows || j < 0 || j >= t->cols)
-        return neuv_fail(NEUV_ERR_INTERNAL, "triplet (%d, %d) outside a %d by %d matrix", i, j, t->rows, t->cols);
+        return error_set(NEUV_ERR_INTERNAL, "triplet (%d, %d) outside a %d by %d matrix", i, j, t->rows, t->cols);
     if (t->n == t->cap) {
         /* Grow all three arrays together; keep the old ones on failure so
          * triplets_free still releases everything. */
         size_t cap = t->cap ? 2 * t->cap : 16;
         int *ni = realloc(t->i, cap * sizeof *ni);
-        if (!ni) return neuv_fail_nomem("sparse matrix triplets");
+        if (!ni) return error_nomem("sparse matrix triplets");
         t->i = ni;
         int *nj = realloc(t->j, cap * sizeof *nj);
-        if (!nj) return neuv_fail_nomem("sparse matrix triplets");
+        if (!nj) return error_nomem("sparse matrix triplets");
         t->j = nj;
         double *nv = realloc(t->v, cap * sizeof *nv);
-        if (!nv) return neuv_fail_nomem("sparse matrix triplets");
+        if (!nv) return error_nomem("sparse matrix triplets");
         t->v = nv;
         t->cap = cap;
     }
@@ -93,7 +93,7 @@ neuv_status sparse_from_triplets(const triplet_list *t, sparse_matrix *out)
     }
     if (nnz > (size_t)0x7fffffff) {
         free(cstart); free(by_col); free(rcount); free(rpos); free(order); free(row_start);
-        return neuv_fail(NEUV_ERR_NOMEM, "sparse matrix with %zu nonzeros is too large", nnz);
+        return error_set(NEUV_ERR_NOMEM, "sparse matrix with %zu nonzeros is too large", nnz);
     }
     int *col = malloc((nnz ? nnz : 1) * sizeof *col);
     double *val = malloc((nnz ? nnz : 1) * sizeof *val);
@@ -123,7 +123,7 @@ neuv_status sparse_from_triplets(const triplet_list *t, sparse_matrix *out)
 
 nomem:
     free(cstart); free(by_col); free(rcount); free(rpos); free(order); free(row_start);
-    return neuv_fail_nomem("sparse matrix");
+    return error_nomem("sparse matrix");
 }
 
 void sparse_free(sparse_matrix *a)
@@ -172,7 +172,7 @@ neuv_status sparse_copy(const sparse_matrix *a, sparse_matrix *out)
     out->val = malloc((nnz ? nnz : 1) * sizeof *out->val);
     if (!out->row_start || !out->col || !out->val) {
         sparse_free(out);
-        return neuv_fail_nomem("sparse matrix copy");
+        return error_nomem("sparse matrix copy");
     }
     out->rows = a->rows;
     out->cols = a->cols;

@@ -61,7 +61,7 @@ static neuv_status add_mesh(walk *w, const struct aiMesh *am, const affine *T)
     for (unsigned f = 0; f < am->mNumFaces; f++) {
         const struct aiFace *face = &am->mFaces[f];
         if (face->mNumIndices < 3) continue; /* points and lines are not surface */
-        if (face->mNumIndices > 64) return neuv_fail(NEUV_ERR_INPUT, "a face with %u corners was not triangulated", face->mNumIndices);
+        if (face->mNumIndices > 64) return error_set(NEUV_ERR_INPUT, "a face with %u corners was not triangulated", face->mNumIndices);
         int n = (int)face->mNumIndices;
         for (int k = 0; k < n; k++) {
             corners[k] = base + (int)face->mIndices[k];
@@ -75,7 +75,7 @@ static neuv_status add_mesh(walk *w, const struct aiMesh *am, const affine *T)
 
 static neuv_status add_node(walk *w, const struct aiNode *node, const affine *parent, int depth)
 {
-    if (depth > 256) return neuv_fail(NEUV_ERR_INPUT, "the scene's node tree is deeper than 256");
+    if (depth > 256) return error_set(NEUV_ERR_INPUT, "the scene's node tree is deeper than 256");
     affine T = compose(parent, &node->mTransformation);
     for (unsigned i = 0; i < node->mNumMeshes; i++) {
         unsigned mi = node->mMeshes[i];
@@ -98,7 +98,7 @@ neuv_status io_read_assimp(const char *path, neuv_mesh **out)
         char msg[400];
         snprintf(msg, sizeof msg, "%s", aiGetErrorString());
         for (char *p = msg; *p; p++) if (*p == '\n' || *p == '\r') *p = ' ';
-        return neuv_fail(NEUV_ERR_INPUT, "cannot read: %s", msg[0] ? msg : "Assimp failed");
+        return error_set(NEUV_ERR_INPUT, "cannot read: %s", msg[0] ? msg : "Assimp failed");
     }
     mesh_builder b;
     mesh_builder_init(&b);

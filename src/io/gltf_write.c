@@ -69,7 +69,7 @@ static void accessor(json_writer *w, int view, int component, long long count, c
 neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
 {
     if (m->nf == 0 || m->nv == 0)
-        return neuv_fail(NEUV_ERR_INPUT, "the mesh has no faces; glTF needs at least one triangle");
+        return error_set(NEUV_ERR_INPUT, "the mesh has no faces; glTF needs at least one triangle");
     seam_split sp;
     neuv_status s = seam_split_vertices(m, &sp);
     if (s != NEUV_OK) return s;
@@ -77,7 +77,7 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
     size_t pos_bytes = (size_t)sp.nv * 12, uv_bytes = sp.uv ? (size_t)sp.nv * 8 : 0;
     size_t idx_bytes = (size_t)m->nf * 12, total = pos_bytes + uv_bytes + idx_bytes; /* all multiples of 4 */
     unsigned char *buf = malloc(total);
-    if (!buf) { seam_split_free(&sp); return neuv_fail_nomem("the glTF buffer"); }
+    if (!buf) { seam_split_free(&sp); return error_nomem("the glTF buffer"); }
     float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     unsigned char *q = buf;
     for (int v = 0; v < sp.nv; v++)
@@ -138,10 +138,10 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
     json_key(&w, "byteLength"); json_int(&w, (long long)total);
     if (!binary) {
         char *b64 = base64(buf, total);
-        if (!b64) { free(buf); json_free(&w); return neuv_fail_nomem("the glTF buffer"); }
+        if (!b64) { free(buf); json_free(&w); return error_nomem("the glTF buffer"); }
         static const char prefix[] = "data:application/octet-stream;base64,";
         char *uri = malloc(sizeof prefix + strlen(b64));
-        if (!uri) { free(b64); free(buf); json_free(&w); return neuv_fail_nomem("the glTF buffer"); }
+        if (!uri) { free(b64); free(buf); json_free(&w); return error_nomem("the glTF buffer"); }
         memcpy(uri, prefix, sizeof prefix - 1);
         strcpy(uri + sizeof prefix - 1, b64);
         free(b64);
@@ -150,7 +150,7 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
     }
     json_end_object(&w); json_end_array(&w);
     json_end_object(&w);
-    if (w.failed) { free(buf); json_free(&w); return neuv_fail_nomem("the glTF header"); }
+    if (w.failed) { free(buf); json_free(&w); return error_nomem("the glTF header"); }
 
     const char *text = json_text(&w);
     size_t tlen = strlen(text);
@@ -160,7 +160,7 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
         size_t length = 12 + 8 + tlen + jpad + 8 + total;
         if (length > UINT32_MAX) {
             free(buf); json_free(&w);
-            return neuv_fail(NEUV_ERR_INPUT, "the mesh is too large for GLB (over 4 GiB)");
+            return error_set(NEUV_ERR_INPUT, "the mesh is too large for GLB (over 4 GiB)");
         }
         unsigned char head[20], *h = head;
         h = put_u32le(h, 0x46546C67u); /* "glTF" */
@@ -181,5 +181,5 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
     }
     free(buf);
     json_free(&w);
-    return ferror(fp) ? neuv_fail(NEUV_ERR_IO, "write failed (disk full?)") : NEUV_OK;
+    return ferror(fp) ? error_set(NEUV_ERR_IO, "write failed (disk full?)") : NEUV_OK;
 }

@@ -34,11 +34,11 @@ static neuv_status write_obj(FILE *fp, const neuv_mesh *m, const int *label, int
 {
     int *start = calloc((size_t)max_label + 2, sizeof(int));
     int *order = malloc(sizeof(int) * (size_t)(m->nf ? m->nf : 1));
-    if (!start || !order) { free(start); free(order); return neuv_fail_nomem("label groups"); }
+    if (!start || !order) { free(start); free(order); return error_nomem("label groups"); }
     for (int f = 0; f < m->nf; f++) start[label[f] + 1]++;
     for (int l = 0; l <= max_label; l++) start[l + 1] += start[l];
     int *fill = malloc(sizeof(int) * ((size_t)max_label + 1));
-    if (!fill) { free(start); free(order); return neuv_fail_nomem("label groups"); }
+    if (!fill) { free(start); free(order); return error_nomem("label groups"); }
     memcpy(fill, start, sizeof(int) * ((size_t)max_label + 1));
     for (int f = 0; f < m->nf; f++) order[fill[label[f]]++] = f;
     free(fill);
@@ -62,10 +62,10 @@ neuv_status labels_write(const char *path, const neuv_mesh *m, const int *label)
     const char *dot = strrchr(path, '.');
     int ply = dot && !strcasecmp(dot, ".ply"), obj = dot && !strcasecmp(dot, ".obj");
     if (!ply && !obj)
-        return neuv_fail(NEUV_ERR_INPUT, "chart labels are written as .ply or .obj, not '%s'", dot ? dot : path);
+        return error_set(NEUV_ERR_INPUT, "chart labels are written as .ply or .obj, not '%s'", dot ? dot : path);
     int max_label = -1;
     for (int f = 0; f < m->nf; f++) {
-        if (label[f] < 0) return neuv_fail(NEUV_ERR_INPUT, "face %d has a negative label %d", f, label[f]);
+        if (label[f] < 0) return error_set(NEUV_ERR_INPUT, "face %d has a negative label %d", f, label[f]);
         if (label[f] > max_label) max_label = label[f];
     }
     atomic_file af;
@@ -73,6 +73,6 @@ neuv_status labels_write(const char *path, const neuv_mesh *m, const int *label)
     if (st) return st;
     if (ply) write_ply(af.fp, m, label);
     else if ((st = write_obj(af.fp, m, label, max_label))) { atomic_file_abort(&af); return st; }
-    if (ferror(af.fp)) { atomic_file_abort(&af); return neuv_fail(NEUV_ERR_IO, "%s: write failed (disk full?)", path); }
+    if (ferror(af.fp)) { atomic_file_abort(&af); return error_set(NEUV_ERR_IO, "%s: write failed (disk full?)", path); }
     return atomic_file_commit(&af);
 }

@@ -35,25 +35,25 @@ static int grow(void **p, size_t *cap, size_t need, size_t item)
 
 static neuv_status grow_vertices(mesh_builder *b, size_t need)
 {
-    if (need > MAX_ITEMS) return neuv_fail(NEUV_ERR_INPUT, "more than %zu vertices; too large for neuv", MAX_ITEMS);
-    return grow((void **)&b->pos, &b->cap_v, need, 3 * sizeof(double)) ? NEUV_OK : neuv_fail_nomem("vertices");
+    if (need > MAX_ITEMS) return error_set(NEUV_ERR_INPUT, "more than %zu vertices; too large for neuv", MAX_ITEMS);
+    return grow((void **)&b->pos, &b->cap_v, need, 3 * sizeof(double)) ? NEUV_OK : error_nomem("vertices");
 }
 
 static neuv_status grow_uvs(mesh_builder *b, size_t need)
 {
-    if (need > MAX_ITEMS) return neuv_fail(NEUV_ERR_INPUT, "more than %zu texture coordinates; too large for neuv", MAX_ITEMS);
-    return grow((void **)&b->uv, &b->cap_uv, need, 2 * sizeof(double)) ? NEUV_OK : neuv_fail_nomem("texture coordinates");
+    if (need > MAX_ITEMS) return error_set(NEUV_ERR_INPUT, "more than %zu texture coordinates; too large for neuv", MAX_ITEMS);
+    return grow((void **)&b->uv, &b->cap_uv, need, 2 * sizeof(double)) ? NEUV_OK : error_nomem("texture coordinates");
 }
 
 static neuv_status grow_faces(mesh_builder *b, size_t need)
 {
-    if (need > MAX_ITEMS) return neuv_fail(NEUV_ERR_INPUT, "more than %zu triangles; too large for neuv", MAX_ITEMS);
+    if (need > MAX_ITEMS) return error_set(NEUV_ERR_INPUT, "more than %zu triangles; too large for neuv", MAX_ITEMS);
     if (need <= b->cap_f) return NEUV_OK;
     size_t c1 = b->cap_f, c2 = b->cap_f, c3 = b->cap_f;
     if (!grow((void **)&b->tri, &c1, need, 3 * sizeof(int)) ||
         !grow((void **)&b->tri_uv, &c2, need, 3 * sizeof(int)) ||
         !grow((void **)&b->origin, &c3, need, sizeof(int)))
-        return neuv_fail_nomem("faces");
+        return error_nomem("faces");
     b->cap_f = c1;
     return NEUV_OK;
 }
@@ -117,7 +117,7 @@ neuv_status mesh_builder_add_polygon(mesh_builder *b, int n, const int *v, const
         if (si) b->scratch_idx = si;
         int *st = realloc(b->scratch_tri, c * 3 * sizeof(int));
         if (st) b->scratch_tri = st;
-        if (!sp || !sx || !si || !st) return neuv_fail_nomem("a polygon");
+        if (!sp || !sx || !si || !st) return error_nomem("a polygon");
         b->cap_scratch = c;
     }
     /* A corner outside the vertices seen so far is reported by finish; the
@@ -141,9 +141,9 @@ static neuv_status bad_index(mesh_builder_style st, int origin, const char *what
                              int index, int count)
 {
     if (st.origin_is_line)
-        return neuv_fail(NEUV_ERR_INPUT, "line %d: face references %s %d, but there are %d %s",
+        return error_set(NEUV_ERR_INPUT, "line %d: face references %s %d, but there are %d %s",
                          origin, what, index + st.index_base, count, whats);
-    return neuv_fail(NEUV_ERR_INPUT, "face %d references %s %d, but there are %d %s",
+    return error_set(NEUV_ERR_INPUT, "face %d references %s %d, but there are %d %s",
                      origin, what, index + st.index_base, count, whats);
 }
 
@@ -152,13 +152,13 @@ neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style st, neuv_mes
     *out = NULL;
     neuv_status s = NEUV_OK;
     if (b->nf == 0) {
-        s = neuv_fail(NEUV_ERR_INPUT, "no faces (a point cloud?); neuv needs a triangle mesh");
+        s = error_set(NEUV_ERR_INPUT, "no faces (a point cloud?); neuv needs a triangle mesh");
         goto done;
     }
     for (int i = 0; i < b->nv; i++) {
         const double *p = b->pos + 3 * (size_t)i;
         if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
-            s = neuv_fail(NEUV_ERR_INPUT, "vertex %d has a non-finite coordinate", i + st.index_base);
+            s = error_set(NEUV_ERR_INPUT, "vertex %d has a non-finite coordinate", i + st.index_base);
             goto done;
         }
     }
@@ -169,7 +169,7 @@ neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style st, neuv_mes
         }
     int keep_uv = b->faces_with_uv > 0 && b->faces_without_uv == 0;
     if (b->faces_with_uv > 0 && b->faces_without_uv > 0)
-        neuv_log(NEUV_LOG_WARN, "%d of %d faces have no texture coordinates; UVs dropped",
+        log_message(NEUV_LOG_WARN, "%d of %d faces have no texture coordinates; UVs dropped",
                  b->faces_without_uv, b->faces_with_uv + b->faces_without_uv);
     if (keep_uv) {
         for (size_t k = 0; k < 3 * (size_t)b->nf; k++)
@@ -179,13 +179,13 @@ neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style st, neuv_mes
             }
         for (int i = 0; i < b->nuv; i++)
             if (!isfinite(b->uv[2 * (size_t)i]) || !isfinite(b->uv[2 * (size_t)i + 1])) {
-                s = neuv_fail(NEUV_ERR_INPUT, "texture coordinate %d is not finite", i + st.index_base);
+                s = error_set(NEUV_ERR_INPUT, "texture coordinate %d is not finite", i + st.index_base);
                 goto done;
             }
     }
 
     neuv_mesh *m = calloc(1, sizeof *m);
-    if (!m) { s = neuv_fail_nomem("a mesh"); goto done; }
+    if (!m) { s = error_nomem("a mesh"); goto done; }
     /* Hand the arrays over, shrunk to size (a failed shrink keeps the block). */
     m->nv = b->nv;
     m->nf = b->nf;

@@ -32,12 +32,12 @@ static neuv_status read_all(FILE *fp, char **data, size_t *len)
     struct stat st;
     if (fstat(fileno(fp), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) cap = (size_t)st.st_size + 1;
     char *buf = malloc(cap);
-    if (!buf) return neuv_fail_nomem("the file contents");
+    if (!buf) return error_nomem("the file contents");
     for (;;) {
         if (n + 1 >= cap) {
             size_t c = cap * 2;
             char *b = realloc(buf, c);
-            if (!b) { free(buf); return neuv_fail_nomem("the file contents"); }
+            if (!b) { free(buf); return error_nomem("the file contents"); }
             buf = b;
             cap = c;
         }
@@ -47,7 +47,7 @@ static neuv_status read_all(FILE *fp, char **data, size_t *len)
     }
     if (ferror(fp)) {
         free(buf);
-        return neuv_fail(NEUV_ERR_IO, "read failed: %s", strerror(errno));
+        return error_set(NEUV_ERR_IO, "read failed: %s", strerror(errno));
     }
     buf[n] = '\0';
     *data = buf;
@@ -68,37 +68,37 @@ static mesh_format input_format(const char *ext)
 
 neuv_status neuv_mesh_load(const char *path, neuv_mesh **out)
 {
-    if (!out) return neuv_fail(NEUV_ERR_INTERNAL, "neuv_mesh_load: no output pointer");
+    if (!out) return error_set(NEUV_ERR_INTERNAL, "neuv_mesh_load: no output pointer");
     *out = NULL;
-    if (!path || !*path) return neuv_fail(NEUV_ERR_INPUT, "no file name given");
+    if (!path || !*path) return error_set(NEUV_ERR_INPUT, "no file name given");
     struct stat st;
-    if (stat(path, &st) != 0) return neuv_fail(NEUV_ERR_IO, "cannot open: %s", strerror(errno));
-    if (S_ISDIR(st.st_mode)) return neuv_fail(NEUV_ERR_IO, "is a directory, not a mesh file");
+    if (stat(path, &st) != 0) return error_set(NEUV_ERR_IO, "cannot open: %s", strerror(errno));
+    if (S_ISDIR(st.st_mode)) return error_set(NEUV_ERR_IO, "is a directory, not a mesh file");
     char ext[16];
     extension_of(path, ext);
     mesh_format fmt = input_format(ext);
     if (fmt == FMT_UNKNOWN) {
         if (!ext[0])
-            return neuv_fail(NEUV_ERR_INPUT, "no file extension to tell the format (expected .obj, .off, .ply, .stl, .gltf, .glb)");
-        return neuv_fail(NEUV_ERR_INPUT, "unknown format '%s' (expected .obj, .off, .ply, .stl, .gltf, .glb)", ext);
+            return error_set(NEUV_ERR_INPUT, "no file extension to tell the format (expected .obj, .off, .ply, .stl, .gltf, .glb)");
+        return error_set(NEUV_ERR_INPUT, "unknown format '%s' (expected .obj, .off, .ply, .stl, .gltf, .glb)", ext);
     }
-    if (S_ISREG(st.st_mode) && st.st_size == 0) return neuv_fail(NEUV_ERR_INPUT, "empty file");
+    if (S_ISREG(st.st_mode) && st.st_size == 0) return error_set(NEUV_ERR_INPUT, "empty file");
     if (fmt == FMT_ASSIMP) return io_read_assimp(path, out);
 
     FILE *fp = fopen(path, "rb");
-    if (!fp) return neuv_fail(NEUV_ERR_IO, "cannot open: %s", strerror(errno));
+    if (!fp) return error_set(NEUV_ERR_IO, "cannot open: %s", strerror(errno));
     char *data = NULL;
     size_t len = 0;
     neuv_status s = read_all(fp, &data, &len);
     fclose(fp);
     if (s != NEUV_OK) return s;
     if (len == 0) {
-        s = neuv_fail(NEUV_ERR_INPUT, "empty file");
+        s = error_set(NEUV_ERR_INPUT, "empty file");
     } else if (fmt == FMT_PLY) {
         s = io_read_ply(data, len, out);
     } else if (memchr(data, '\0', len)) {
         /* A text reader would stop at the NUL and silently drop the rest. */
-        s = neuv_fail(NEUV_ERR_INPUT, "binary data in a text %s file", fmt == FMT_OBJ ? "OBJ" : "OFF");
+        s = error_set(NEUV_ERR_INPUT, "binary data in a text %s file", fmt == FMT_OBJ ? "OBJ" : "OFF");
     } else {
         s = fmt == FMT_OBJ ? io_read_obj(data, len, out) : io_read_off(data, len, out);
     }
@@ -108,22 +108,22 @@ neuv_status neuv_mesh_load(const char *path, neuv_mesh **out)
 
 neuv_status neuv_mesh_save(const neuv_mesh *mesh, const char *path)
 {
-    if (!mesh) return neuv_fail(NEUV_ERR_INTERNAL, "neuv_mesh_save: no mesh");
-    if (!path || !*path) return neuv_fail(NEUV_ERR_INPUT, "no output file name given");
+    if (!mesh) return error_set(NEUV_ERR_INTERNAL, "neuv_mesh_save: no mesh");
+    if (!path || !*path) return error_set(NEUV_ERR_INPUT, "no output file name given");
     char ext[16];
     extension_of(path, ext);
     int kind = !strcmp(ext, ".obj") ? 1 : !strcmp(ext, ".ply") ? 2 : !strcmp(ext, ".glb") ? 3
              : !strcmp(ext, ".gltf") ? 4 : 0;
     if (!kind) {
-        if (!ext[0]) return neuv_fail(NEUV_ERR_INPUT, "no file extension to tell the output format (expected .obj, .ply, .glb, .gltf)");
-        return neuv_fail(NEUV_ERR_INPUT, "unknown output format '%s' (expected .obj, .ply, .glb, .gltf)", ext);
+        if (!ext[0]) return error_set(NEUV_ERR_INPUT, "no file extension to tell the output format (expected .obj, .ply, .glb, .gltf)");
+        return error_set(NEUV_ERR_INPUT, "unknown output format '%s' (expected .obj, .ply, .glb, .gltf)", ext);
     }
     /* A mesh made by neuv is always consistent; checking is cheap and turns a
      * bug elsewhere into a message instead of a wild read. */
     for (size_t c = 0; c < 3 * (size_t)mesh->nf; c++)
         if (mesh->tri[c] < 0 || mesh->tri[c] >= mesh->nv ||
             (mesh->nuv > 0 && mesh->tri_uv && (mesh->tri_uv[c] < 0 || mesh->tri_uv[c] >= mesh->nuv)))
-            return neuv_fail(NEUV_ERR_INTERNAL, "cannot save: face %zu has an index out of range", c / 3);
+            return error_set(NEUV_ERR_INTERNAL, "cannot save: face %zu has an index out of range", c / 3);
     atomic_file af;
     neuv_status s = atomic_file_open(&af, path);
     if (s != NEUV_OK) return s;

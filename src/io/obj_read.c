@@ -59,10 +59,10 @@ static int corner_push(corner_buf *cb, int v, int uv)
 static neuv_status resolve(long long idx, int count, int line, const char *what, int *out)
 {
     if (idx == 0)
-        return neuv_fail(NEUV_ERR_INPUT, "line %d: %s index 0 is not valid (OBJ counts from 1)", line, what);
+        return error_set(NEUV_ERR_INPUT, "line %d: %s index 0 is not valid (OBJ counts from 1)", line, what);
     if (idx < 0) {
         if (-idx > count)
-            return neuv_fail(NEUV_ERR_INPUT, "line %d: relative %s index %lld reaches before the first one",
+            return error_set(NEUV_ERR_INPUT, "line %d: relative %s index %lld reaches before the first one",
                              line, what, idx);
         *out = (int)(count + idx);
         return NEUV_OK;
@@ -70,7 +70,7 @@ static neuv_status resolve(long long idx, int count, int line, const char *what,
     /* Positive indices may point forward (some writers emit faces first), so
      * the range is checked once the whole file is read. */
     if (idx > INT_MAX / 4)
-        return neuv_fail(NEUV_ERR_INPUT, "line %d: face references %s %lld, but there are %d", line, what,
+        return error_set(NEUV_ERR_INPUT, "line %d: face references %s %lld, but there are %d", line, what,
                          idx, count);
     *out = (int)(idx - 1);
     return NEUV_OK;
@@ -95,7 +95,7 @@ static neuv_status parse_face(text_cursor *c, mesh_builder *b, corner_buf *cb)
         if (!ok || !(*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n' || *p == '\0')) {
             char tok[32];
             text_token(c, tok);
-            return neuv_fail(NEUV_ERR_INPUT, "line %d: malformed face corner '%s'", c->line, tok);
+            return error_set(NEUV_ERR_INPUT, "line %d: malformed face corner '%s'", c->line, tok);
         }
         int v, t = -1;
         neuv_status s = resolve(vi, b->nv, c->line, "vertex", &v);
@@ -103,11 +103,11 @@ static neuv_status parse_face(text_cursor *c, mesh_builder *b, corner_buf *cb)
         if (s != NEUV_OK) return s;
         if (has_t) with_uv++;
         else without_uv++;
-        if (!corner_push(cb, v, t)) return neuv_fail_nomem("a face");
+        if (!corner_push(cb, v, t)) return error_nomem("a face");
         c->p = p;
     }
     if (cb->n < 3)
-        return neuv_fail(NEUV_ERR_INPUT, "line %d: face has %d corner%s; a face needs at least 3", c->line,
+        return error_set(NEUV_ERR_INPUT, "line %d: face has %d corner%s; a face needs at least 3", c->line,
                          cb->n, cb->n == 1 ? "" : "s");
     /* A face with texture coordinates on only some corners has none. */
     const int *uv = with_uv > 0 && without_uv == 0 ? cb->uv : NULL;
@@ -118,7 +118,7 @@ static neuv_status bad_number(text_cursor *c, const char *stmt)
 {
     char tok[32];
     text_token(c, tok);
-    return neuv_fail(NEUV_ERR_INPUT, "line %d: malformed number '%s' in '%s'", c->line, tok, stmt);
+    return error_set(NEUV_ERR_INPUT, "line %d: malformed number '%s' in '%s'", c->line, tok, stmt);
 }
 
 neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
@@ -139,19 +139,19 @@ neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
             for (int k = 0; k < 3 && s == NEUV_OK; k++) {
                 int r = text_read_double(&c, &x[k]);
                 if (r < 0) s = bad_number(&c, "v");
-                else if (r == 0) s = neuv_fail(NEUV_ERR_INPUT, "line %d: 'v' needs 3 coordinates", c.line);
+                else if (r == 0) s = error_set(NEUV_ERR_INPUT, "line %d: 'v' needs 3 coordinates", c.line);
             }
             if (s != NEUV_OK) break;
             /* A 4th value (w) or vertex colours may follow; they are ignored. */
             if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]))
-                s = neuv_fail(NEUV_ERR_INPUT, "line %d: vertex %d has a non-finite coordinate", c.line, b.nv + 1);
+                s = error_set(NEUV_ERR_INPUT, "line %d: vertex %d has a non-finite coordinate", c.line, b.nv + 1);
             else
                 s = mesh_builder_add_vertex(&b, x[0], x[1], x[2]);
         } else if (statement(p, "vt")) {
             c.p += 2;
             double t[2] = {0, 0};
             int r = text_read_double(&c, &t[0]);
-            if (r == 0) s = neuv_fail(NEUV_ERR_INPUT, "line %d: 'vt' needs a coordinate", c.line);
+            if (r == 0) s = error_set(NEUV_ERR_INPUT, "line %d: 'vt' needs a coordinate", c.line);
             if (r > 0) r = text_read_double(&c, &t[1]); /* v is optional (1D textures) */
             if (r < 0) s = bad_number(&c, "vt");
             if (s == NEUV_OK) s = mesh_builder_add_uv(&b, t[0], t[1]);

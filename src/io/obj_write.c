@@ -34,5 +34,5 @@ neuv_status io_write_obj(const neuv_mesh *m, FILE *fp)
             fprintf(fp, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
         }
     }
-    return ferror(fp) ? neuv_fail(NEUV_ERR_IO, "write failed (disk full?)") : NEUV_OK;
+    return ferror(fp) ? error_set(NEUV_ERR_IO, "write failed (disk full?)") : NEUV_OK;
 }

@@ -150,16 +150,16 @@ static neuv_status parse_header(const char *data, size_t len, ply_header *h)
 {
     memset(h, 0, sizeof *h);
     if (len < 4 || strncmp(data, "ply", 3) != 0 || !(data[3] == '\n' || data[3] == '\r'))
-        return neuv_fail(NEUV_ERR_INPUT, "not a PLY file: it does not start with 'ply'");
+        return error_set(NEUV_ERR_INPUT, "not a PLY file: it does not start with 'ply'");
     size_t pos = 0;
     int line_no = 0, have_format = 0;
     char line[1024];
     for (;;) {
-        if (pos >= len) return neuv_fail(NEUV_ERR_INPUT, "truncated: the PLY header has no end_header");
+        if (pos >= len) return error_set(NEUV_ERR_INPUT, "truncated: the PLY header has no end_header");
         const char *nl = memchr(data + pos, '\n', len - pos);
         size_t n = nl ? (size_t)(nl - (data + pos)) : len - pos;
         line_no++;
-        if (n >= sizeof line) return neuv_fail(NEUV_ERR_INPUT, "line %d: PLY header line too long", line_no);
+        if (n >= sizeof line) return error_set(NEUV_ERR_INPUT, "line %d: PLY header line too long", line_no);
         memcpy(line, data + pos, n);
         line[n] = '\0';
         pos += n + (nl ? 1 : 0);
@@ -168,19 +168,19 @@ static neuv_status parse_header(const char *data, size_t len, ply_header *h)
         if (nw == 0 || !strcmp(w[0], "comment") || !strcmp(w[0], "obj_info") || !strcmp(w[0], "ply")) continue;
         if (!strcmp(w[0], "end_header")) break;
         if (!strcmp(w[0], "format")) {
-            if (nw < 2) return neuv_fail(NEUV_ERR_INPUT, "line %d: PLY format line without a format", line_no);
+            if (nw < 2) return error_set(NEUV_ERR_INPUT, "line %d: PLY format line without a format", line_no);
             if (!strcmp(w[1], "ascii")) h->format = F_ASCII;
             else if (!strcmp(w[1], "binary_little_endian")) h->format = F_LE;
             else if (!strcmp(w[1], "binary_big_endian")) h->format = F_BE;
-            else return neuv_fail(NEUV_ERR_INPUT, "line %d: unknown PLY format '%s'", line_no, w[1]);
+            else return error_set(NEUV_ERR_INPUT, "line %d: unknown PLY format '%s'", line_no, w[1]);
             have_format = 1;
         } else if (!strcmp(w[0], "element")) {
             char *end;
             long long count = nw >= 3 ? strtoll(w[2], &end, 10) : -1;
             if (nw < 3 || *end || count < 0)
-                return neuv_fail(NEUV_ERR_INPUT, "line %d: malformed PLY element line", line_no);
+                return error_set(NEUV_ERR_INPUT, "line %d: malformed PLY element line", line_no);
             ply_element *e = realloc(h->elems, sizeof *e * (size_t)(h->nelems + 1));
-            if (!e) return neuv_fail_nomem("the PLY header");
+            if (!e) return error_nomem("the PLY header");
             h->elems = e;
             e = &h->elems[h->nelems++];
             memset(e, 0, sizeof *e);
@@ -194,10 +194,10 @@ static neuv_status parse_header(const char *data, size_t len, ply_header *h)
             if (!strcmp(w[1], "vertex") && first_vertex) e->kind = K_VERTEX;
             else if (!strcmp(w[1], "face") && first_face) e->kind = K_FACE;
             if (e->kind != K_OTHER && count > INT_MAX / 4)
-                return neuv_fail(NEUV_ERR_INPUT, "header declares %lld %s; too large for neuv", count,
+                return error_set(NEUV_ERR_INPUT, "header declares %lld %s; too large for neuv", count,
                                  e->kind == K_VERTEX ? "vertices" : "faces");
         } else if (!strcmp(w[0], "property")) {
-            if (h->nelems == 0) return neuv_fail(NEUV_ERR_INPUT, "line %d: PLY property before any element", line_no);
+            if (h->nelems == 0) return error_set(NEUV_ERR_INPUT, "line %d: PLY property before any element", line_no);
             ply_element *e = &h->elems[h->nelems - 1];
             ply_prop pr = {T_NONE, T_NONE, R_NONE};
             const char *name;
@@ -206,24 +206,24 @@ static neuv_status parse_header(const char *data, size_t len, ply_header *h)
                 pr.type = type_of(w[3]);
                 name = w[4];
                 if (pr.count_type == T_NONE || pr.type == T_NONE || pr.count_type == T_F32 || pr.count_type == T_F64)
-                    return neuv_fail(NEUV_ERR_INPUT, "line %d: unknown PLY list types '%s %s'", line_no, w[2], w[3]);
+                    return error_set(NEUV_ERR_INPUT, "line %d: unknown PLY list types '%s %s'", line_no, w[2], w[3]);
             } else if (nw >= 3) {
                 pr.type = type_of(w[1]);
                 name = w[2];
-                if (pr.type == T_NONE) return neuv_fail(NEUV_ERR_INPUT, "line %d: unknown PLY type '%s'", line_no, w[1]);
+                if (pr.type == T_NONE) return error_set(NEUV_ERR_INPUT, "line %d: unknown PLY type '%s'", line_no, w[1]);
             } else {
-                return neuv_fail(NEUV_ERR_INPUT, "line %d: malformed PLY property line", line_no);
+                return error_set(NEUV_ERR_INPUT, "line %d: malformed PLY property line", line_no);
             }
             pr.role = role_of(e->kind, name, pr.count_type != T_NONE);
             ply_prop *ps = realloc(e->props, sizeof *ps * (size_t)(e->nprops + 1));
-            if (!ps) return neuv_fail_nomem("the PLY header");
+            if (!ps) return error_nomem("the PLY header");
             e->props = ps;
             e->props[e->nprops++] = pr;
         } else {
-            return neuv_fail(NEUV_ERR_INPUT, "line %d: unknown PLY header keyword '%s'", line_no, w[0]);
+            return error_set(NEUV_ERR_INPUT, "line %d: unknown PLY header keyword '%s'", line_no, w[0]);
         }
     }
-    if (!have_format) return neuv_fail(NEUV_ERR_INPUT, "the PLY header has no format line");
+    if (!have_format) return error_set(NEUV_ERR_INPUT, "the PLY header has no format line");
     h->data_offset = pos;
     h->data_line = line_no + 1;
     return NEUV_OK;
@@ -236,13 +236,13 @@ static neuv_status data_error(ply_reader *r, int k, const ply_element *e, long l
     if (k < 0) {
         char tok[32];
         text_token(&r->c, tok);
-        return neuv_fail(NEUV_ERR_INPUT, "line %d: malformed number '%s'", r->c.line, tok);
+        return error_set(NEUV_ERR_INPUT, "line %d: malformed number '%s'", r->c.line, tok);
     }
     if (e->kind == K_VERTEX)
-        return neuv_fail(NEUV_ERR_INPUT, "truncated: header declares %lld vertices, data ends after %lld", e->count, i);
+        return error_set(NEUV_ERR_INPUT, "truncated: header declares %lld vertices, data ends after %lld", e->count, i);
     if (e->kind == K_FACE)
-        return neuv_fail(NEUV_ERR_INPUT, "truncated: header declares %lld faces, data ends after %lld", e->count, i);
-    return neuv_fail(NEUV_ERR_INPUT, "truncated: header declares %lld '%s' elements, data ends after %lld",
+        return error_set(NEUV_ERR_INPUT, "truncated: header declares %lld faces, data ends after %lld", e->count, i);
+    return error_set(NEUV_ERR_INPUT, "truncated: header declares %lld '%s' elements, data ends after %lld",
                      e->count, e->name, i);
 }
 
@@ -292,7 +292,7 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
             int have[8] = {0};
             for (int k = 0; k < e->nprops; k++) have[e->props[k].role] = 1;
             if (!have[R_X] || !have[R_Y] || !have[R_Z]) {
-                s = neuv_fail(NEUV_ERR_INPUT, "the PLY vertex element has no x, y, z properties");
+                s = error_set(NEUV_ERR_INPUT, "the PLY vertex element has no x, y, z properties");
                 break;
             }
             vertex_uv = have[R_U] && have[R_V];
@@ -306,7 +306,7 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
                 have_v |= e->props[k].role == R_FACE_VERTICES;
                 face_texcoord |= e->props[k].role == R_FACE_TEXCOORD;
             }
-            if (!have_v) { s = neuv_fail(NEUV_ERR_INPUT, "the PLY face element has no vertex_indices list"); break; }
+            if (!have_v) { s = error_set(NEUV_ERR_INPUT, "the PLY face element has no vertex_indices list"); break; }
             /* Per-corner texcoords replace per-vertex UVs read before. */
             if (face_texcoord) b.nuv = 0;
             long long room = (long long)(len / 8) + 16;
@@ -328,7 +328,7 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
                 double cnt;
                 if ((got = read_value(&r, pr->count_type, &cnt)) <= 0) { s = data_error(&r, got, e, i); break; }
                 if (cnt < 0 || cnt > MAX_CORNERS) {
-                    s = neuv_fail(NEUV_ERR_INPUT, "%s %lld has a list of %.0f items", e->name, i, cnt);
+                    s = error_set(NEUV_ERR_INPUT, "%s %lld has a list of %.0f items", e->name, i, cnt);
                     break;
                 }
                 size_t n = (size_t)cnt;
@@ -339,14 +339,14 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
                     continue;
                 }
                 if (pr->role != R_NONE && !scratch_fit(&fs, pr->role == R_FACE_TEXCOORD ? (n + 1) / 2 : n)) {
-                    s = neuv_fail_nomem("a face");
+                    s = error_nomem("a face");
                     break;
                 }
                 for (size_t j = 0; j < n; j++) {
                     if ((got = read_value(&r, pr->type, &val)) <= 0) { s = data_error(&r, got, e, i); break; }
                     if (pr->role == R_FACE_VERTICES) {
                         if (!(val >= 0 && val < (double)nverts)) {
-                            s = neuv_fail(NEUV_ERR_INPUT, "face %lld references vertex %.0f, but there are %lld vertices",
+                            s = error_set(NEUV_ERR_INPUT, "face %lld references vertex %.0f, but there are %lld vertices",
                                           i, val, nverts);
                             break;
                         }
@@ -364,7 +364,7 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
                 if (s == NEUV_OK && vertex_uv) s = mesh_builder_add_uv(&b, x[R_U], x[R_V]);
             } else if (e->kind == K_FACE) {
                 if (nc < 3) {
-                    s = neuv_fail(NEUV_ERR_INPUT, "face %lld has %d corners; a face needs at least 3", i, nc);
+                    s = error_set(NEUV_ERR_INPUT, "face %lld has %d corners; a face needs at least 3", i, nc);
                     break;
                 }
                 const int *uv = NULL;

@@ -33,5 +33,5 @@ neuv_status io_write_ply(const neuv_mesh *m, FILE *fp)
         fwrite(rec, 1, (size_t)(q - rec), fp);
     }
     seam_split_free(&sp);
-    return ferror(fp) ? neuv_fail(NEUV_ERR_IO, "write failed (disk full?)") : NEUV_OK;
+    return ferror(fp) ? error_set(NEUV_ERR_IO, "write failed (disk full?)") : NEUV_OK;
 }

@@ -6,7 +6,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 
-/* libpng reports errors by longjmp; keep the message for neuv_fail. */
+/* libpng reports errors by longjmp; keep the message for error_set. */
 static void png_on_error(png_structp png, png_const_charp msg)
 {
     char *buf = png_get_error_ptr(png);
@@ -18,7 +18,7 @@ static void png_on_warning(png_structp png, png_const_charp msg) { (void)png; (v
 
 neuv_status png_write_rgb(const char *path, int w, int h, const uint8_t *rgb)
 {
-    if (w <= 0 || h <= 0 || !rgb) return neuv_fail(NEUV_ERR_INPUT, "%s: empty image", path);
+    if (w <= 0 || h <= 0 || !rgb) return error_set(NEUV_ERR_INPUT, "%s: empty image", path);
     atomic_file af;
     neuv_status st = atomic_file_open(&af, path);
     if (st != NEUV_OK) return st;
@@ -28,12 +28,12 @@ neuv_status png_write_rgb(const char *path, int w, int h, const uint8_t *rgb)
     if (!png || !info) {
         png_destroy_write_struct(&png, &info);
         atomic_file_abort(&af);
-        return neuv_fail_nomem("PNG writer");
+        return error_nomem("PNG writer");
     }
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
         atomic_file_abort(&af);
-        return neuv_fail(NEUV_ERR_IO, "%s: cannot write PNG: %s", path, msg);
+        return error_set(NEUV_ERR_IO, "%s: cannot write PNG: %s", path, msg);
     }
     png_init_io(png, af.fp);
     png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,

@@ -16,11 +16,11 @@ neuv_status seam_split_vertices(const neuv_mesh *m, seam_split *out)
     memset(out, 0, sizeof *out);
     size_t nc = 3 * (size_t)m->nf;
     out->tri = malloc(sizeof(int) * (nc > 0 ? nc : 1));
-    if (!out->tri) return neuv_fail_nomem("split faces");
+    if (!out->tri) return error_nomem("split faces");
     if (m->nuv == 0 || !m->tri_uv) {
         out->nv = m->nv;
         out->src = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
-        if (!out->src) { seam_split_free(out); return neuv_fail_nomem("split vertices"); }
+        if (!out->src) { seam_split_free(out); return error_nomem("split vertices"); }
         for (int v = 0; v < m->nv; v++) out->src[v] = v;
         memcpy(out->tri, m->tri, sizeof(int) * nc);
         return NEUV_OK;
@@ -35,13 +35,13 @@ neuv_status seam_split_vertices(const neuv_mesh *m, seam_split *out)
     out->uv = malloc(sizeof(double) * 2 * (cap > 0 ? cap : 1));
     if (!start || !corner || !out->src || !out->uv) {
         free(start); free(corner); seam_split_free(out);
-        return neuv_fail_nomem("split vertices");
+        return error_nomem("split vertices");
     }
     for (size_t c = 0; c < nc; c++) start[m->tri[c] + 1]++;
     for (int v = 0; v < m->nv; v++) start[v + 1] += start[v];
     {
         int *fill = malloc(sizeof(int) * ((size_t)m->nv + 1));
-        if (!fill) { free(start); free(corner); seam_split_free(out); return neuv_fail_nomem("split vertices"); }
+        if (!fill) { free(start); free(corner); seam_split_free(out); return error_nomem("split vertices"); }
         memcpy(fill, start, sizeof(int) * ((size_t)m->nv + 1));
         for (size_t c = 0; c < nc; c++) corner[fill[m->tri[c]]++] = (int)c;
         free(fill);

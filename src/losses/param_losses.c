@@ -15,7 +15,7 @@ neuv_status param_corners_build(const int *tri, int nf, param_corners *c)
     c->p2 = malloc(n * sizeof(int));
     if (!c->p0 || !c->p1 || !c->p2) {
         param_corners_free(c);
-        return neuv_fail(NEUV_ERR_NOMEM, "out of memory for %d triangle corners", nf);
+        return error_set(NEUV_ERR_NOMEM, "out of memory for %d triangle corners", nf);
     }
     for (int k = 0; k < 3; k++)
         for (int f = 0; f < nf; f++) {

@@ -190,7 +190,7 @@ static int split_round(neuv_mesh *m, int isolate, int count_vertices, int refuse
         if (refuse) {
             int a = t.edge_v[2 * e], b = t.edge_v[2 * e + 1], n = edge_faces_count(&t, e);
             edge_faces_free(&t);
-            neuv_fail(NEUV_ERR_INPUT, "non-manifold edge between vertices %d and %d (%d faces)",
+            error_set(NEUV_ERR_INPUT, "non-manifold edge between vertices %d and %d (%d faces)",
                       rep ? rep[a] : a, rep ? rep[b] : b, n);
             return -2;
         }
@@ -240,7 +240,7 @@ static int split_round(neuv_mesh *m, int isolate, int count_vertices, int refuse
             else if (first_root[v] >= 0 && first_root[v] != root) {
                 if (refuse) {
                     free(isolated); free(first_root); uf_free(&fan); uf_free(&all);
-                    neuv_fail(NEUV_ERR_INPUT, "non-manifold vertex %d (its faces form more than one fan)",
+                    error_set(NEUV_ERR_INPUT, "non-manifold vertex %d (its faces form more than one fan)",
                               rep ? rep[v] : v);
                     return -2;
                 }
@@ -355,7 +355,7 @@ static int orient(neuv_mesh *m, mesh_clean_report *r)
         }
         if (!orientable) {
             r->nonorientable_components++;
-            neuv_log(NEUV_LOG_WARN, "component with face %d is non-orientable; left as it is", seed);
+            log_message(NEUV_LOG_WARN, "component with face %d is non-orientable; left as it is", seed);
             continue;
         }
         int invert = 0;
@@ -386,12 +386,12 @@ static neuv_status validate(const neuv_mesh *m)
 {
     for (int c = 0; c < 3 * m->nf; c++)
         if (m->tri[c] < 0 || m->tri[c] >= m->nv)
-            return neuv_fail(NEUV_ERR_INPUT, "face %d uses vertex %d, but there are only %d vertices",
+            return error_set(NEUV_ERR_INPUT, "face %d uses vertex %d, but there are only %d vertices",
                              c / 3, m->tri[c], m->nv);
     if (m->tri_uv)
         for (int c = 0; c < 3 * m->nf; c++)
             if (m->tri_uv[c] < 0 || m->tri_uv[c] >= m->nuv)
-                return neuv_fail(NEUV_ERR_INPUT, "face %d uses UV %d, but there are only %d UVs",
+                return error_set(NEUV_ERR_INPUT, "face %d uses UV %d, but there are only %d UVs",
                                  c / 3, m->tri_uv[c], m->nuv);
     return NEUV_OK;
 }
@@ -408,13 +408,13 @@ neuv_status mesh_clean(neuv_mesh *m, const mesh_clean_options *opts, mesh_clean_
     /* Work on a copy so that m is untouched when we refuse or run out of memory. */
     neuv_mesh *w = mesh_clone(m);
     int *rep = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
-    if (!w || !rep) { mesh_free(w); free(rep); return neuv_fail_nomem("mesh copy"); }
+    if (!w || !rep) { mesh_free(w); free(rep); return error_nomem("mesh copy"); }
 
     st = NEUV_OK;
     int welded = weld(w, rep);
-    if (welded < 0) st = neuv_fail_nomem("vertex weld table");
+    if (welded < 0) st = error_nomem("vertex weld table");
     else r->welded_vertices = welded;
-    if (st == NEUV_OK && drop_bad_faces(w, r) != 0) st = neuv_fail_nomem("face table");
+    if (st == NEUV_OK && drop_bad_faces(w, r) != 0) st = error_nomem("face table");
     /* The first round splits fans at non-manifold edges and bow-ties; a
      * later round only runs when an edge is still shared by more than two
      * faces (the detached face reached both ends through other faces) and
@@ -422,14 +422,14 @@ neuv_status mesh_clean(neuv_mesh *m, const mesh_clean_options *opts, mesh_clean_
     for (int round = 0; round < 3 && st == NEUV_OK; round++) {
         int n = split_round(w, round > 0, round == 0, !split, round == 0 ? rep : NULL, r);
         if (n == -2) st = NEUV_ERR_INPUT;
-        else if (n < 0) st = neuv_fail_nomem("non-manifold split");
+        else if (n < 0) st = error_nomem("non-manifold split");
         else {
             if (round == 0) r->nonmanifold_edges = n;
             if (n == 0) break;
         }
     }
-    if (st == NEUV_OK && drop_unreferenced(w, r) != 0) st = neuv_fail_nomem("vertex table");
-    if (st == NEUV_OK && orient(w, r) != 0) st = neuv_fail_nomem("orientation");
+    if (st == NEUV_OK && drop_unreferenced(w, r) != 0) st = error_nomem("vertex table");
+    if (st == NEUV_OK && orient(w, r) != 0) st = error_nomem("orientation");
     free(rep);
     if (st != NEUV_OK) { mesh_free(w); return st; }
 

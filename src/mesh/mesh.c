@@ -46,7 +46,7 @@ neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_
     m->tri_uv = malloc(sizeof(int) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
     if (!m->uv || !m->tri_uv) {
         free(m->uv); free(m->tri_uv); m->uv = NULL; m->tri_uv = NULL;
-        return neuv_fail_nomem("UVs");
+        return error_nomem("UVs");
     }
     m->nuv = nuv;
     memcpy(m->uv, uv, sizeof(double) * 2 * (size_t)nuv);

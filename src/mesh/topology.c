@@ -149,11 +149,11 @@ neuv_status mesh_faces_topology(const neuv_mesh *m, const int *faces, int nfaces
 {
     memset(out, 0, sizeof *out);
     subset_edges s;
-    if (subset_edges_build(&s, m, faces, nfaces) != 0) return neuv_fail_nomem("edge table");
+    if (subset_edges_build(&s, m, faces, nfaces) != 0) return error_nomem("edge table");
     edge_map verts;
     if (edge_map_init(&verts, (size_t)nfaces + 3) != 0) {
         subset_edges_free(&s);
-        return neuv_fail_nomem("vertex table");
+        return error_nomem("vertex table");
     }
     int nv = 0;
     for (int i = 0; i < nfaces && nv >= 0; i++)
@@ -168,7 +168,7 @@ neuv_status mesh_faces_topology(const neuv_mesh *m, const int *faces, int nfaces
     for (int e = 0; e < s.n; e++) boundary_edges += s.count[e] == 1;
     out->edges = s.n;
     subset_edges_free(&s);
-    if (loops < 0) return neuv_fail_nomem("boundary loops");
+    if (loops < 0) return error_nomem("boundary loops");
     out->faces = nfaces;
     out->vertices = nv;
     out->boundary_loops = loops;
@@ -194,7 +194,7 @@ neuv_status mesh_subset_topology(const neuv_mesh *m, const int *face_label, int 
 {
     int n;
     int *faces = select_faces(m, face_label, label, &n);
-    if (!faces) return neuv_fail_nomem("face subset");
+    if (!faces) return error_nomem("face subset");
     neuv_status st = mesh_faces_topology(m, faces, n, out);
     free(faces);
     return st;

@@ -173,7 +173,7 @@ static neuv_status distortion_metrics(int nf, const face_measure *fm, const unsi
 
     double *chart3 = calloc((size_t)nchart * 2, sizeof *chart3);
     qce_entry *qe = malloc(sizeof *qe * (size_t)nm);
-    if (!chart3 || !qe) { free(chart3); free(qe); return neuv_fail_nomem("UV metrics"); }
+    if (!chart3 || !qe) { free(chart3); free(qe); return error_nomem("UV metrics"); }
     double *chartuv = chart3 + nchart;
     for (int f = 0; f < nf; f++)
         if (measured[f]) { chart3[chart[f]] += fm[f].area3; chartuv[chart[f]] += fabs(fm[f].area_uv); }
@@ -231,7 +231,7 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
     memset(out, 0, sizeof *out);
     metrics_set_nan(out);
     if (!m || m->nuv <= 0 || !m->uv || !m->tri_uv)
-        return neuv_fail(NEUV_ERR_INPUT, "the mesh carries no texture coordinates");
+        return error_set(NEUV_ERR_INPUT, "the mesh carries no texture coordinates");
     if (m->nf == 0) return NEUV_OK;
 
     /* Valid faces: 3D area at least 1e-12 x the mean. */
@@ -249,7 +249,7 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
     unsigned char *measured = malloc((size_t)m->nf);
     int *chart = malloc(sizeof *chart * (size_t)m->nf);
     neuv_status st = NEUV_OK;
-    if (!sub.tri || !sub.tri_uv || !fm || !measured || !chart) { st = neuv_fail_nomem("UV metrics"); goto done; }
+    if (!sub.tri || !sub.tri_uv || !fm || !measured || !chart) { st = error_nomem("UV metrics"); goto done; }
     int nvalid = 0;
     for (int f = 0; f < m->nf; f++) {
         double p[3][3], q[3][2], s[2];
@@ -280,7 +280,7 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
     }
 
     int nchart = uv_charts(&sub, chart);
-    if (nchart < 0) { st = neuv_fail_nomem("UV charts"); goto done; }
+    if (nchart < 0) { st = error_nomem("UV charts"); goto done; }
     out->charts = nchart;
 
     st = distortion_metrics(nvalid, fm, measured, chart, nchart, out);
@@ -288,7 +288,7 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
 
     /* Flips against each chart's 3D-area-weighted majority orientation. */
     double *vote = calloc(nchart > 0 ? (size_t)nchart : 1, sizeof *vote);
-    if (!vote) { st = neuv_fail_nomem("UV metrics"); goto done; }
+    if (!vote) { st = error_nomem("UV metrics"); goto done; }
     for (int f = 0; f < nvalid; f++)
         if (measured[f]) vote[chart[f]] += fm[f].area_uv > 0 ? fm[f].area3 : -fm[f].area3;
     for (int f = 0; f < nvalid; f++)
@@ -299,7 +299,7 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
     double t0 = now_seconds();
     st = uv_coverage_count(sub.uv, nvalid, sub.tri_uv, measured, UV_METRICS_RASTER, &cov);
     if (st != NEUV_OK) goto done;
-    neuv_log(NEUV_LOG_DEBUG, "overlap raster: %d faces, %lld pixels covered, %lld twice, %.3f s",
+    log_message(NEUV_LOG_DEBUG, "overlap raster: %d faces, %lld pixels covered, %lld twice, %.3f s",
              nvalid - out->degenerate_uv, cov.covered, cov.overlapped, now_seconds() - t0);
     out->overlap_fraction = uv_coverage_overlap_fraction(&cov);
 
@@ -312,7 +312,7 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
     out->packing_efficiency = inside ? sumuv_all : NAN;
 
     double cut = cut_length(&sub);
-    if (cut < 0) { st = neuv_fail_nomem("UV seams"); goto done; }
+    if (cut < 0) { st = error_nomem("UV seams"); goto done; }
     out->seam_length = cut / sqrt(sum3);
 
 done:

@@ -103,7 +103,7 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
 {
     out->covered = out->overlapped = 0;
     if (resolution < 1 || resolution > 32768)
-        return neuv_fail(NEUV_ERR_INPUT, "raster resolution %d is outside [1, 32768]", resolution);
+        return error_set(NEUV_ERR_INPUT, "raster resolution %d is outside [1, 32768]", resolution);
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     for (int f = 0; f < nf; f++) {
         if (face_mask && !face_mask[f]) continue;
@@ -143,7 +143,7 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
     int *active = malloc(sizeof *active * (size_t)(nf > 0 ? nf : 1));
     if (!rows || !diff || !band_first || !fill || !by_band || !active) {
         free(rows); free(diff); free(band_first); free(fill); free(by_band); free(active);
-        return neuv_fail_nomem("overlap raster");
+        return error_nomem("overlap raster");
     }
     for (int f = 0; f < nf; f++) {
         rows[2 * f] = 1;
@@ -233,7 +233,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     *pairs_out = NULL;
     *n_pairs = 0;
     if (resolution < 1 || resolution > 32768)
-        return neuv_fail(NEUV_ERR_INPUT, "raster resolution %d is outside [1, 32768]", resolution);
+        return error_set(NEUV_ERR_INPUT, "raster resolution %d is outside [1, 32768]", resolution);
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     for (size_t c = 0; c < 3 * (size_t)(nf > 0 ? nf : 0); c++)
         for (int d = 0; d < 2; d++) {
@@ -250,7 +250,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     if (height < 1) height = 1;
     size_t cap = 4 * (size_t)(nf > 0 ? nf : 1), n = 0;
     chart_span_px *sp = malloc(sizeof *sp * cap);
-    if (!sp) return neuv_fail_nomem("overlap raster");
+    if (!sp) return error_nomem("overlap raster");
     for (int f = 0; f < nf; f++) {
         raster_edge e[3];
         double box[4];
@@ -264,7 +264,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
             if (span_lo > span_hi) continue;
             if (n == cap) {
                 chart_span_px *g = realloc(sp, sizeof *sp * cap * 2);
-                if (!g) { free(sp); return neuv_fail_nomem("overlap raster"); }
+                if (!g) { free(sp); return error_nomem("overlap raster"); }
                 sp = g;
                 cap *= 2;
             }
@@ -280,7 +280,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     uint64_t *keys = malloc(sizeof *keys * kcap);
     if (!row_start || !sorted || !owner || !keys) {
         free(sp); free(row_start); free(sorted); free(owner); free(keys);
-        return neuv_fail_nomem("overlap raster");
+        return error_nomem("overlap raster");
     }
     for (size_t i = 0; i < n; i++) row_start[sp[i].row + 1]++;
     for (int j = 0; j < height; j++) row_start[j + 1] += row_start[j];
@@ -304,7 +304,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
                 if (key == last) continue;
                 if (nk == kcap) {
                     uint64_t *g = realloc(keys, sizeof *keys * kcap * 2);
-                    if (!g) { free(sp); free(owner); free(keys); return neuv_fail_nomem("overlap raster"); }
+                    if (!g) { free(sp); free(owner); free(keys); return error_nomem("overlap raster"); }
                     keys = g;
                     kcap *= 2;
                 }
@@ -319,7 +319,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     for (size_t k = 0; k < nk; k++)
         if (nu == 0 || keys[k] != keys[nu - 1]) keys[nu++] = keys[k];
     int *pairs = malloc(sizeof *pairs * 2 * (nu > 0 ? nu : 1));
-    if (!pairs) { free(sp); free(keys); return neuv_fail_nomem("overlap raster"); }
+    if (!pairs) { free(sp); free(keys); return error_nomem("overlap raster"); }
     for (size_t k = 0; k < nu; k++) {
         pairs[2 * k] = (int)(keys[k] >> 32);
         pairs[2 * k + 1] = (int)(keys[k] & 0xffffffffu);

@@ -14,12 +14,12 @@ neuv_status diffusion_net_create(diffusion_net *net, const diffusion_net_config 
 {
     memset(net, 0, sizeof *net);
     if (!cfg || cfg->in < 1 || cfg->width < 1 || cfg->out < 1 || cfg->blocks < 1)
-        return neuv_fail(NEUV_ERR_INPUT, "DiffusionNet: sizes must be >= 1 (in %d, width %d, out %d, blocks %d)",
+        return error_set(NEUV_ERR_INPUT, "DiffusionNet: sizes must be >= 1 (in %d, width %d, out %d, blocks %d)",
                          cfg ? cfg->in : 0, cfg ? cfg->width : 0, cfg ? cfg->out : 0, cfg ? cfg->blocks : 0);
     net->cfg = *cfg;
     int C = cfg->width;
     net->block = calloc((size_t)cfg->blocks, sizeof *net->block);
-    if (!net->block) return neuv_fail_nomem("DiffusionNet blocks");
+    if (!net->block) return error_nomem("DiffusionNet blocks");
     rng r;
     rng_seed(&r, cfg->seed);
     char name[256];
@@ -81,7 +81,7 @@ neuv_status diffusion_net_geometry_create(const neuv_mesh *m, const operators *o
 {
     memset(g, 0, sizeof *g);
     if (!m || !ops || m->nv != ops->nv || m->nf < 1 || ops->k < 1)
-        return neuv_fail(NEUV_ERR_INPUT, "DiffusionNet: operators do not match the mesh (%d vs %d vertices)",
+        return error_set(NEUV_ERR_INPUT, "DiffusionNet: operators do not match the mesh (%d vs %d vertices)",
                          m ? m->nv : 0, ops ? ops->nv : 0);
     if (k <= 0 || k > ops->k) k = ops->k;
     int nv = m->nv, K = ops->k;
@@ -90,14 +90,14 @@ neuv_status diffusion_net_geometry_create(const neuv_mesh *m, const operators *o
     g->k = k;
     double area = 0;
     for (int v = 0; v < nv; v++) area += ops->mass[v];
-    if (!(area > 0)) return neuv_fail(NEUV_ERR_INPUT, "DiffusionNet: mesh has zero total area");
+    if (!(area > 0)) return error_set(NEUV_ERR_INPUT, "DiffusionNet: mesh has zero total area");
     g->evecs = malloc(sizeof(float) * (size_t)nv * k);
     g->neg_evals = malloc(sizeof(float) * (size_t)k);
     g->mass = malloc(sizeof(float) * (size_t)nv);
     g->face_vertex = malloc(sizeof(int) * 3 * (size_t)m->nf);
     if (!g->evecs || !g->neg_evals || !g->mass || !g->face_vertex) {
         diffusion_net_geometry_free(g);
-        return neuv_fail_nomem("DiffusionNet operators");
+        return error_nomem("DiffusionNet operators");
     }
     /* Unit-area rescaling: Φ' = Φ sqrt(A) keeps Φ'ᵀ (M/A) Φ' = I, so the
      * projection Φᵀ M x is unchanged when written as Φ'ᵀ (M/A) x. */
@@ -183,22 +183,22 @@ neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *op
     int nv = m->nv;
     if (f == DIFFUSION_NET_HKS) {
         if (!ops || !ops->hks || ops->n_hks < 1 || ops->nv != nv)
-            return neuv_fail(NEUV_ERR_INPUT, "DiffusionNet: no heat kernel signatures in the operators");
+            return error_set(NEUV_ERR_INPUT, "DiffusionNet: no heat kernel signatures in the operators");
         float *x = malloc(sizeof(float) * (size_t)nv * ops->n_hks);
-        if (!x) return neuv_fail_nomem("HKS features");
+        if (!x) return error_nomem("HKS features");
         for (size_t i = 0; i < (size_t)nv * ops->n_hks; i++) x[i] = (float)ops->hks[i];
         *out = x;
         *dim = ops->n_hks;
         return NEUV_OK;
     }
-    if (f != DIFFUSION_NET_XYZ) return neuv_fail(NEUV_ERR_INPUT, "DiffusionNet: unknown input features %d", (int)f);
+    if (f != DIFFUSION_NET_XYZ) return error_set(NEUV_ERR_INPUT, "DiffusionNet: unknown input features %d", (int)f);
     double c[3] = {0, 0, 0}, wsum = 0;
     for (int v = 0; v < nv; v++) {
         double w = ops && ops->mass ? ops->mass[v] : 1.0;
         for (int d = 0; d < 3; d++) c[d] += w * m->pos[3 * v + d];
         wsum += w;
     }
-    if (!(wsum > 0)) return neuv_fail(NEUV_ERR_INPUT, "DiffusionNet: mesh has zero area");
+    if (!(wsum > 0)) return error_set(NEUV_ERR_INPUT, "DiffusionNet: mesh has zero area");
     for (int d = 0; d < 3; d++) c[d] /= wsum;
     double r = 0;
     for (int v = 0; v < nv; v++) {
@@ -208,7 +208,7 @@ neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *op
     }
     r = r > 0 ? 1.0 / sqrt(r) : 1.0;
     float *x = malloc(sizeof(float) * (size_t)nv * 3);
-    if (!x) return neuv_fail_nomem("xyz features");
+    if (!x) return error_nomem("xyz features");
     for (int v = 0; v < nv; v++)
         for (int d = 0; d < 3; d++) x[3 * v + d] = (float)((m->pos[3 * v + d] - c[d]) * r);
     *out = x;

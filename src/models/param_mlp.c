@@ -13,7 +13,7 @@ neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, 
 {
     *m = (param_mlp){0};
     if (in < 1 || psi < 0 || width < 1 || out < 1 || depth < 1)
-        return neuv_fail(NEUV_ERR_INPUT, "bad MLP shape (in %d, psi %d, width %d, out %d, depth %d)", in,
+        return error_set(NEUV_ERR_INPUT, "bad MLP shape (in %d, psi %d, width %d, out %d, depth %d)", in,
                          psi, width, out, depth);
     m->in = in; m->psi = psi; m->width = width; m->out = out; m->depth = depth;
     m->slope = slope > 0 ? slope : 0.01f;
@@ -36,7 +36,7 @@ neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, 
         m->w_psi->data[i] = (float)((2 * rng_uniform(r) - 1) * bound);
     if (depth > 1) {
         m->rest = calloc((size_t)(depth - 1), sizeof *m->rest);
-        if (!m->rest) return neuv_fail_nomem("MLP layers");
+        if (!m->rest) return error_nomem("MLP layers");
         for (int l = 1; l < depth; l++) {
             int last = l == depth - 1;
             snprintf(name, sizeof name, "%s.%d", prefix, l);

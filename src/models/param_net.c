@@ -122,7 +122,7 @@ static neuv_status pairs_append(geodesic_pairs *p, int i, int j, double dist)
         if (nj) p->j = nj;
         double *nd = realloc(p->d, cap * sizeof(double));
         if (nd) p->d = nd;
-        if (!ni || !nj || !nd) return neuv_fail_nomem("geodesic pairs");
+        if (!ni || !nj || !nd) return error_nomem("geodesic pairs");
         p->cap = cap;
     }
     p->i[p->n] = i; p->j[p->n] = j; p->d[p->n] = dist;
@@ -134,7 +134,7 @@ static neuv_status pairs_append(geodesic_pairs *p, int i, int j, double dist)
 static neuv_status vertex_normals(const neuv_mesh *m, double **out)
 {
     double *n = calloc((size_t)m->nv * 3, sizeof(double));
-    if (!n) return neuv_fail_nomem("vertex normals");
+    if (!n) return error_nomem("vertex normals");
     for (int f = 0; f < m->nf; f++) {
         double fn[3], a = mesh_face_area(m, f);
         mesh_face_normal(m, f, fn);
@@ -201,7 +201,7 @@ static neuv_status chart_lscm_target(const neuv_mesh *sub, const double cen[3], 
 {
     int n = sub->nv;
     double *uv = malloc(sizeof(double) * 2 * (size_t)n), *pj = malloc(sizeof(double) * 2 * (size_t)n);
-    if (!uv || !pj) { free(uv); free(pj); return neuv_fail_nomem("warm-start target"); }
+    if (!uv || !pj) { free(uv); free(pj); return error_nomem("warm-start target"); }
     for (int v = 0; v < n; v++) {
         const double *p = sub->pos + 3 * v;
         double d0 = p[0] - cen[0], d1 = p[1] - cen[1], d2 = p[2] - cen[2];
@@ -259,7 +259,7 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
     double *dist = NULL;
     geodesic_pairs pp = {0};
     neuv_status s = chart_submesh(m, face_chart, c, &sub, &vmap, &fmap);
-    if (s != NEUV_OK) return neuv_fail(NEUV_ERR_INPUT, "chart %d has no face", c);
+    if (s != NEUV_OK) return error_set(NEUV_ERR_INPUT, "chart %d has no face", c);
     double cen[3] = {0, 0, 0}, atot = 0;
     for (int f = 0; f < sub->nf; f++) {
         double a = mesh_face_area(sub, f);
@@ -267,7 +267,7 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
             for (int q = 0; q < 3; q++) cen[q] += a * sub->pos[3 * sub->tri[3 * f + k] + q] / 3;
         atot += a;
     }
-    if (!(atot > 0)) { s = neuv_fail(NEUV_ERR_INPUT, "chart %d has zero area", c); goto done; }
+    if (!(atot > 0)) { s = error_set(NEUV_ERR_INPUT, "chart %d has zero area", c); goto done; }
     for (int q = 0; q < 3; q++) cen[q] /= atot;
     int v0 = 0;
     double best = INFINITY, rmax = 0;
@@ -280,7 +280,7 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
     }
     rmax = sqrt(rmax);
     dist = malloc((size_t)sub->nv * sizeof(double));
-    if (!dist) { s = neuv_fail_nomem("chart distances"); goto done; }
+    if (!dist) { s = error_nomem("chart distances"); goto done; }
     s = heat_geodesics_create(sub, 1.0, &hg);
     if (s != NEUV_OK) goto done;
     s = heat_geodesics_from_vertex(hg, v0, dist);
@@ -342,7 +342,7 @@ static neuv_status psi_standardize(float *rows, long n, int dim, train_data *d)
 {
     d->shift = malloc(sizeof(double) * (size_t)dim);
     d->mul = malloc(sizeof(double) * (size_t)dim);
-    if (!d->shift || !d->mul) return neuv_fail_nomem("psi standardization");
+    if (!d->shift || !d->mul) return error_nomem("psi standardization");
     double inv = 1.0 / sqrt((double)dim);
     for (int k = 0; k < dim; k++) {
         double mean, mul;
@@ -382,7 +382,7 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
     /* The per-vertex rows first (also the source of the pooled code). */
     int pd = feat ? dim : 6;
     float *rows = malloc((size_t)d->nv * (size_t)pd * sizeof(float));
-    if (!rows) { free(vn); return neuv_fail_nomem("psi rows"); }
+    if (!rows) { free(vn); return error_nomem("psi rows"); }
     for (int v = 0; v < d->nv; v++) {
         int mv = d->vmesh[v];
         float *r = rows + (size_t)v * pd;
@@ -404,9 +404,9 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
     int od = feat ? 2 * dim : 6;
     d->psi = calloc((size_t)d->n_charts * (size_t)od, sizeof(float));
     int *cnt = calloc((size_t)d->n_charts, sizeof(int));
-    if (!d->psi || !cnt) { free(rows); free(cnt); return neuv_fail_nomem("psi"); }
+    if (!d->psi || !cnt) { free(rows); free(cnt); return error_nomem("psi"); }
     double *acc = calloc((size_t)d->n_charts * (size_t)pd, sizeof(double));
-    if (!acc) { free(rows); free(cnt); return neuv_fail_nomem("psi"); }
+    if (!acc) { free(rows); free(cnt); return error_nomem("psi"); }
     for (int v = 0; v < d->nv; v++) {
         int c = d->vchart[v];
         const float *r = rows + (size_t)v * pd;
@@ -437,14 +437,14 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
     if (norm) { d->given_shift = norm->psi_shift; d->given_mul = norm->psi_mul; }
     /* Chart vertex count: one per (chart, vertex) pair. */
     int *seen = malloc((size_t)m->nv * sizeof(int));
-    if (!seen) return neuv_fail_nomem("chart vertices");
+    if (!seen) return error_nomem("chart vertices");
     for (int v = 0; v < m->nv; v++) seen[v] = -1;
     int *order = malloc((size_t)m->nf * sizeof(int)), *start = calloc((size_t)n_charts + 1, sizeof(int));
-    if (!order || !start) { free(seen); free(order); free(start); return neuv_fail_nomem("chart faces"); }
+    if (!order || !start) { free(seen); free(order); free(start); return error_nomem("chart faces"); }
     for (int f = 0; f < m->nf; f++) start[face_chart[f] + 1]++;
     for (int c = 0; c < n_charts; c++) start[c + 1] += start[c];
     int *pos = malloc((size_t)(n_charts + 1) * sizeof(int));
-    if (!pos) { free(seen); free(order); free(start); return neuv_fail_nomem("chart faces"); }
+    if (!pos) { free(seen); free(order); free(start); return error_nomem("chart faces"); }
     memcpy(pos, start, (size_t)(n_charts + 1) * sizeof(int));
     for (int f = 0; f < m->nf; f++) order[pos[face_chart[f]]++] = f;
     free(pos);
@@ -472,27 +472,27 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
     d->rot = malloc((size_t)n_charts * 9 * sizeof(double));
     if (!d->rot || !d->vmesh || !d->vchart || !d->x || !d->tri || !d->fmesh || !d->fchart || !d->fcum || !d->cos3d ||
         !d->area3d || !d->center || !d->scale)
-        return neuv_fail_nomem("training data");
+        return error_nomem("training data");
     if (!skip_pairs && o->warm_iters > 0 && o->lambda_warm > 0 && !o->init) {
         d->target = malloc((size_t)nv * 2 * sizeof(float));
-        if (!d->target) return neuv_fail_nomem("warm-start targets");
+        if (!d->target) return error_nomem("warm-start targets");
     }
     if ((!skip_pairs || o->infer_heads) && o->solve_steps > 0) {
         d->frame_inv = malloc((size_t)m->nf * 4 * sizeof(float));
         d->conf_w = malloc((size_t)m->nf * sizeof(float));
-        if (!d->frame_inv || !d->conf_w) return neuv_fail_nomem("conformal targets");
+        if (!d->frame_inv || !d->conf_w) return error_nomem("conformal targets");
     }
     int nv_used = 0, nf_used = 0;
     for (int c = 0; c < n_charts; c++) {
         neuv_status s = add_chart(m, face_chart, c, o, d, &nv_used, &nf_used);
         if (s != NEUV_OK) return s;
-        neuv_progress("param", 0.0, "setup chart %d/%d", c + 1, n_charts);
+        log_progress("param", 0.0, "setup chart %d/%d", c + 1, n_charts);
     }
     neuv_status s = param_corners_build(d->tri, d->nf, &d->corners);
     if (s != NEUV_OK) return s;
     /* Targets in normalized units: from the normalized float positions, in double. */
     double *xn = malloc((size_t)nv * 3 * sizeof(double));
-    if (!xn) return neuv_fail_nomem("training data");
+    if (!xn) return error_nomem("training data");
     for (long i = 0; i < nv * 3; i++) xn[i] = d->x[i];
     param_corner_targets(xn, &d->corners, d->cos3d, d->area3d);
     if (d->frame_inv) param_conformal_targets(xn, &d->corners, d->frame_inv, d->conf_w);
@@ -586,12 +586,12 @@ static neuv_status step_buffers_init(const train_data *d, const param_net_option
     b->orient = malloc((size_t)d->nf * sizeof(float));
     b->chart_sum = malloc((size_t)d->n_charts * sizeof(double));
     b->vertex_rows = malloc((size_t)(d->nv > 0 ? d->nv : 1) * sizeof(int));
-    if (!b->vertex_rows) return neuv_fail_nomem("training step buffers");
+    if (!b->vertex_rows) return error_nomem("training step buffers");
     for (int i = 0; i < d->nv; i++) b->vertex_rows[i] = i;
     if (o->psi_mode == PARAM_PSI_PER_VERTEX) b->feat = malloc((size_t)b->np * d->psi_dim * sizeof(float));
     if (!b->x || !b->row || !b->pi || !b->pj || !b->g || !b->orient || !b->chart_sum ||
         (o->psi_mode == PARAM_PSI_PER_VERTEX && !b->feat))
-        return neuv_fail_nomem("training step buffers");
+        return error_nomem("training step buffers");
     memcpy(b->x, d->x, (size_t)d->nv * 3 * sizeof(float));
     memcpy(b->row, d->vchart, (size_t)d->nv * sizeof(int));
     if (b->feat) memcpy(b->feat, d->feat, (size_t)d->nv * d->psi_dim * sizeof(float));
@@ -606,15 +606,15 @@ static neuv_status check_input(const neuv_mesh *m, const int *face_chart, int n_
                                int dim, const param_net_options *o, const double *corner_uv)
 {
     if (!m || !face_chart || !corner_uv || m->nf < 1)
-        return neuv_fail(NEUV_ERR_INPUT, "parameterization needs a mesh with faces, charts and an output array");
-    if (n_charts < 1) return neuv_fail(NEUV_ERR_INPUT, "parameterization needs at least one chart (got %d)", n_charts);
-    if (feat && dim < 1) return neuv_fail(NEUV_ERR_INPUT, "vertex features given with dimension %d", dim);
+        return error_set(NEUV_ERR_INPUT, "parameterization needs a mesh with faces, charts and an output array");
+    if (n_charts < 1) return error_set(NEUV_ERR_INPUT, "parameterization needs at least one chart (got %d)", n_charts);
+    if (feat && dim < 1) return error_set(NEUV_ERR_INPUT, "vertex features given with dimension %d", dim);
     for (int f = 0; f < m->nf; f++)
         if (face_chart[f] < 0 || face_chart[f] >= n_charts)
-            return neuv_fail(NEUV_ERR_INPUT, "face %d has chart %d outside 0..%d", f, face_chart[f], n_charts - 1);
+            return error_set(NEUV_ERR_INPUT, "face %d has chart %d outside 0..%d", f, face_chart[f], n_charts - 1);
     if (o->width < 1 || o->depth < 1 || o->iters < 1 || !(o->lr > 0) || !(o->sigma > 0) || !(o->radius > 0) ||
         !(o->radius < 1))
-        return neuv_fail(NEUV_ERR_INPUT, "bad parameterization options (width %d, depth %d, iters %d, radius %g)",
+        return error_set(NEUV_ERR_INPUT, "bad parameterization options (width %d, depth %d, iters %d, radius %g)",
                          o->width, o->depth, o->iters, o->radius);
     return NEUV_OK;
 }
@@ -641,7 +641,7 @@ static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const
     int pooled = model->psi_mode == PARAM_PSI_POOLED;
     double *chart_sum = malloc((size_t)d->n_charts * sizeof(double));
     float *orient = malloc((size_t)(d->nf > 0 ? d->nf : 1) * sizeof(float));
-    if (!chart_sum || !orient) { free(chart_sum); free(orient); return neuv_fail_nomem("chart orientation"); }
+    if (!chart_sum || !orient) { free(chart_sum); free(orient); return error_nomem("chart orientation"); }
     nn_ctx_reset(ctx);
     nn_tensor *x = nn_from(ctx, d->nv, 3, d->x);
     nn_tensor *psi = pooled ? nn_view(ctx, d->n_charts, d->psi_dim, d->psi) : nn_from(ctx, d->nv, d->psi_dim, d->feat);
@@ -667,7 +667,7 @@ static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const
      * packing, the refinement and the texel density all expect charts at
      * their true size. */
     double *a3 = calloc((size_t)d->n_charts, sizeof(double));
-    if (!a3) { free(chart_sum); free(orient); return neuv_fail_nomem("chart scale"); }
+    if (!a3) { free(chart_sum); free(orient); return error_nomem("chart scale"); }
     for (int f = 0; f < d->nf; f++) a3[d->fchart[f]] += d->area3d[f];
     for (int c = 0; c < d->n_charts; c++)
         gain[c] = fabs(chart_sum[c]) > 0 && a3[c] > 0 ? sqrt(a3[c] / fabs(chart_sum[c])) : 1;
@@ -695,14 +695,14 @@ static neuv_status copy_weights(const param_net_model *from, param_net_model *to
 {
     if (from->psi_dim != psi_dim || from->params.n != to->params.n || from->psi_mode != to->psi_mode ||
         from->f.width != to->f.width || from->f.depth != to->f.depth)
-        return neuv_fail(NEUV_ERR_INPUT, "fine-tuning: the model's networks (width %d, depth %d, psi %d) differ from "
+        return error_set(NEUV_ERR_INPUT, "fine-tuning: the model's networks (width %d, depth %d, psi %d) differ from "
                                          "these options (width %d, depth %d, psi %d)",
                          from->f.width, from->f.depth, from->psi_dim, to->f.width, to->f.depth, psi_dim);
     for (int k = 0; k < to->params.n; k++) {
         const nn_tensor *a = from->params.t[k];
         nn_tensor *b = to->params.t[k];
         if (a->rows != b->rows || a->cols != b->cols || strcmp(a->name, b->name) != 0)
-            return neuv_fail(NEUV_ERR_INPUT, "fine-tuning: weight '%s' differs from the model's '%s'", b->name, a->name);
+            return error_set(NEUV_ERR_INPUT, "fine-tuning: weight '%s' differs from the model's '%s'", b->name, a->name);
         memcpy(b->data, a->data, sizeof(float) * (size_t)a->rows * a->cols);
     }
     return NEUV_OK;
@@ -728,7 +728,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     nn_adam adam = {0};
     nn_ctx *ctx = NULL;
     param_net_model *model = calloc(1, sizeof *model);
-    if (!model) return neuv_fail_nomem("parameterization model");
+    if (!model) return error_nomem("parameterization model");
     nn_params_init(&model->params);
     s = train_data_build(m, face_chart, n_charts, vertex_features, feature_dim, o, o->init, 0, &d);
     if (s != NEUV_OK) goto done;
@@ -758,7 +758,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     s = nn_adam_init(&adam, &model->params, &ac);
     if (s != NEUV_OK) goto done;
     ctx = nn_ctx_create(0);
-    if (!ctx) { s = neuv_fail_nomem("training context"); goto done; }
+    if (!ctx) { s = error_nomem("training context"); goto done; }
     double t1 = now_seconds();
     rep->setup_seconds = t1 - t0;
 
@@ -812,7 +812,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         nn_params_zero_grad(&model->params);
         s = nn_backward(ctx, loss);
         if (s != NEUV_OK) goto done;
-        if (!isfinite(loss->data[0])) { s = neuv_fail(NEUV_ERR_INTERNAL, "parameterization loss is not finite at iteration %d", it); goto done; }
+        if (!isfinite(loss->data[0])) { s = error_set(NEUV_ERR_INTERNAL, "parameterization loss is not finite at iteration %d", it); goto done; }
         nn_adam_step(&adam);
         rep->loss = loss->data[0];
         rep->loss_cycle = lc->data[0]; rep->loss_iso = li->data[0];
@@ -820,7 +820,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         rep->loss_barrier = lfold ? lfold->data[0] : 0;
         rep->loss_warm = lwarm ? lwarm->data[0] : 0;
         if (it % 10 == 0 || it == o->iters - 1)
-            neuv_progress("param", (double)(it + 1) / o->iters, "iter %d loss %.5f", it + 1, rep->loss);
+            log_progress("param", (double)(it + 1) / o->iters, "iter %d loss %.5f", it + 1, rep->loss);
         /* Plateau: the mean loss of a window improved by less than plateau_tol on the
          * previous one. The angle/area weights change at warm-up, so windows restart there. */
         if ((it == o->warmup_iters && o->warmup_iters > 0) || (it == o->warm_iters && o->warm_iters > 0)) {
@@ -850,7 +850,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         s = param_output_solve_conformal(&model->f, &sd, o->solve_anchor, o->solve_steps, &sr);
         if (s == NEUV_OK && o->chart_heads) {
             model->heads = malloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
-            if (!model->heads) s = neuv_fail_nomem("chart heads");
+            if (!model->heads) s = error_nomem("chart heads");
             else {
                 param_solve_data hd = sd;
                 hd.fold_weight = o->solve_fold;
@@ -878,9 +878,9 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
 
     /* Final map at the vertices, oriented counter-clockwise per chart. */
     model->mirror = malloc((size_t)n_charts * sizeof(int));
-    if (!model->mirror) { s = neuv_fail_nomem("chart orientation"); goto done; }
+    if (!model->mirror) { s = error_nomem("chart orientation"); goto done; }
     model->uv_gain = malloc((size_t)n_charts * sizeof(double));
-    if (!model->uv_gain) { s = neuv_fail_nomem("chart scale"); goto done; }
+    if (!model->uv_gain) { s = error_nomem("chart scale"); goto done; }
     s = map_vertices(ctx, model, &d, 1, model->mirror, model->uv_gain, corner_uv, &rep->flipped, &rep->cycle_rms);
     if (s != NEUV_OK) goto done;
     model->center = d.center; d.center = NULL;
@@ -926,11 +926,11 @@ neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, co
     if (!rep) rep = &local;
     memset(rep, 0, sizeof *rep);
     if (!model || !model->psi_shift || !model->psi_mul || model->psi_mode != PARAM_PSI_POOLED)
-        return neuv_fail(NEUV_ERR_INPUT, "this parameterization model holds no ψ standardization: it can only map "
+        return error_set(NEUV_ERR_INPUT, "this parameterization model holds no ψ standardization: it can only map "
                                          "the charts it was trained on");
     int want = vertex_features ? 2 * feature_dim : 6;
     if (want != model->psi_dim)
-        return neuv_fail(NEUV_ERR_INPUT, "the model's ψ has %d numbers, these charts' features give %d", model->psi_dim,
+        return error_set(NEUV_ERR_INPUT, "the model's ψ has %d numbers, these charts' features give %d", model->psi_dim,
                          want);
     param_net_options o;
     param_net_default_options(&o, PARAM_PRESET_FAST);
@@ -943,21 +943,21 @@ neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, co
     train_data d;
     nn_ctx *ctx = NULL;
     int *mirror = malloc((size_t)n_charts * sizeof(int));
-    if (!mirror) return neuv_fail_nomem("chart orientation");
+    if (!mirror) return error_nomem("chart orientation");
     s = train_data_build(m, face_chart, n_charts, vertex_features, feature_dim, &o, model, 1, &d);
     if (s == NEUV_OK) {
         ctx = nn_ctx_create(0);
-        if (!ctx) s = neuv_fail_nomem("parameterization inference");
+        if (!ctx) s = error_nomem("parameterization inference");
     }
     /* Charts the model never saw: the shared output layer, not its own
      * charts' heads; or heads solved for these charts. */
     double *gain = s == NEUV_OK ? malloc((size_t)n_charts * sizeof(double)) : NULL;
-    if (s == NEUV_OK && !gain) s = neuv_fail_nomem("chart scale");
+    if (s == NEUV_OK && !gain) s = error_nomem("chart scale");
     param_net_model with = *model;
     with.heads = NULL;
     if (s == NEUV_OK && o.infer_heads) {
         with.heads = malloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
-        s = with.heads ? solve_new_heads(model, &d, &o, with.heads) : neuv_fail_nomem("chart heads");
+        s = with.heads ? solve_new_heads(model, &d, &o, with.heads) : error_nomem("chart heads");
     }
     if (s == NEUV_OK)
         s = map_vertices(ctx, &with, &d, with.heads != NULL, mirror, gain, corner_uv, &rep->flipped, &rep->cycle_rms);

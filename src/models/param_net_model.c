@@ -21,13 +21,13 @@ static neuv_status run_net(const param_net_model *model, const param_mlp *net, i
                            int n, int in_dim, float *out, int out_dim)
 {
     if (!model || chart_id < 0 || chart_id >= model->n_charts)
-        return neuv_fail(NEUV_ERR_INPUT, "chart %d is not in the model (%d charts)", chart_id,
+        return error_set(NEUV_ERR_INPUT, "chart %d is not in the model (%d charts)", chart_id,
                          model ? model->n_charts : 0);
     if (model->psi_mode != PARAM_PSI_POOLED || !model->psi)
-        return neuv_fail(NEUV_ERR_INPUT, "a per-vertex-feature model cannot be applied without features");
+        return error_set(NEUV_ERR_INPUT, "a per-vertex-feature model cannot be applied without features");
     nn_ctx *ctx = nn_ctx_create(0);
     int *row = calloc((size_t)(n > 0 ? n : 1), sizeof(int));
-    if (!ctx || !row) { nn_ctx_free(ctx); free(row); return neuv_fail_nomem("parameterization inference"); }
+    if (!ctx || !row) { nn_ctx_free(ctx); free(row); return error_nomem("parameterization inference"); }
     nn_tensor *x = nn_from(ctx, n, in_dim, in);
     nn_tensor *psi = nn_view(ctx, 1, model->psi_dim, model->psi + (size_t)chart_id * model->psi_dim);
     neuv_status s = NEUV_OK;
@@ -36,7 +36,7 @@ static neuv_status run_net(const param_net_model *model, const param_mlp *net, i
         nn_tensor *h = param_mlp_head_features(ctx, net, x, psi, row);
         int *head_of = h ? malloc(sizeof(int) * (size_t)(n > 0 ? n : 1)) : NULL;
         if (!h) s = nn_ctx_status(ctx);
-        else if (!head_of) s = neuv_fail_nomem("parameterization inference");
+        else if (!head_of) s = error_nomem("parameterization inference");
         else {
             for (int i = 0; i < n; i++) head_of[i] = chart_id;
             param_heads_apply(net, h->data, n, head_of, model->heads, out);
@@ -56,9 +56,9 @@ neuv_status param_net_apply(const param_net_model *model, int chart_id, const do
 {
     if (n <= 0) return NEUV_OK;
     if (!model || chart_id < 0 || chart_id >= model->n_charts)
-        return neuv_fail(NEUV_ERR_INPUT, "chart %d is not in the model", chart_id);
+        return error_set(NEUV_ERR_INPUT, "chart %d is not in the model", chart_id);
     float *in = malloc((size_t)n * 3 * sizeof(float)), *out = malloc((size_t)n * 2 * sizeof(float));
-    if (!in || !out) { free(in); free(out); return neuv_fail_nomem("parameterization inference"); }
+    if (!in || !out) { free(in); free(out); return error_nomem("parameterization inference"); }
     const double *c = model->center + 3 * chart_id;
     double sc = model->scale[chart_id];
     const double *R = model->rot + 9 * chart_id;
@@ -84,9 +84,9 @@ neuv_status param_net_apply_inverse(const param_net_model *model, int chart_id, 
 {
     if (n <= 0) return NEUV_OK;
     if (!model || chart_id < 0 || chart_id >= model->n_charts)
-        return neuv_fail(NEUV_ERR_INPUT, "chart %d is not in the model", chart_id);
+        return error_set(NEUV_ERR_INPUT, "chart %d is not in the model", chart_id);
     float *in = malloc((size_t)n * 2 * sizeof(float)), *out = malloc((size_t)n * 3 * sizeof(float));
-    if (!in || !out) { free(in); free(out); return neuv_fail_nomem("parameterization inference"); }
+    if (!in || !out) { free(in); free(out); return error_nomem("parameterization inference"); }
     double sign = model->mirror[chart_id] ? -1 : 1;
     double sc = model->scale[chart_id] / (model->uv_gain ? model->uv_gain[chart_id] : 1);
     for (int i = 0; i < n; i++) {

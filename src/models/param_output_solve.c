@@ -21,7 +21,7 @@ static neuv_status hidden_at(const param_mlp *m, const param_solve_data *d, cons
                              double *phi)
 {
     nn_ctx *ctx = nn_ctx_create(0);
-    if (!ctx) return neuv_fail_nomem("output-layer solve");
+    if (!ctx) return error_nomem("output-layer solve");
     nn_tensor *x = nn_from(ctx, d->nv, in_dim, in);
     int rows = d->psi_per_vertex ? d->nv : d->n_charts;
     nn_tensor *psi = d->psi_dim > 0 ? nn_view(ctx, rows, d->psi_dim, (float *)d->psi) : NULL;
@@ -57,7 +57,7 @@ static neuv_status normal_eq_init(normal_eq *q, int n)
     q->g = calloc((size_t)n, sizeof(double));
     q->rows = calloc((size_t)q->cap * n, sizeof(double));
     q->c = calloc((size_t)q->cap, sizeof(double));
-    if (!q->a || !q->g || !q->rows || !q->c) { normal_eq_free(q); return neuv_fail_nomem("output-layer solve"); }
+    if (!q->a || !q->g || !q->rows || !q->c) { normal_eq_free(q); return error_nomem("output-layer solve"); }
     return NEUV_OK;
 }
 
@@ -395,13 +395,13 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     if (!st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->fold_s2 || !st->face_start ||
         !st->vert_start || !st->face_list || !st->vert_list || !st->all_faces || !st->all_verts || !csum) {
         free(csum);
-        return neuv_fail_nomem("output-layer solve");
+        return error_nomem("output-layer solve");
     }
     for (int f0 = 0; f0 < d->nf; f0++) { st->face_start[d->fchart[f0] + 1]++; st->all_faces[f0] = f0; }
     for (int v = 0; v < nv; v++) { st->vert_start[d->vchart[v] + 1]++; st->all_verts[v] = v; }
     for (int c = 0; c < nc; c++) { st->face_start[c + 1] += st->face_start[c]; st->vert_start[c + 1] += st->vert_start[c]; }
     int *fp = malloc(sizeof(int) * (size_t)nc), *vp = malloc(sizeof(int) * (size_t)nc);
-    if (!fp || !vp) { free(fp); free(vp); free(csum); return neuv_fail_nomem("output-layer solve"); }
+    if (!fp || !vp) { free(fp); free(vp); free(csum); return error_nomem("output-layer solve"); }
     memcpy(fp, st->face_start, sizeof(int) * (size_t)nc);
     memcpy(vp, st->vert_start, sizeof(int) * (size_t)nc);
     for (int f0 = 0; f0 < d->nf; f0++) st->face_list[fp[d->fchart[f0]]++] = f0;
@@ -527,7 +527,7 @@ static void theta_from_layer(const nn_linear *l, int H, double *theta)
 static neuv_status check_f(const param_mlp *f, double anchor)
 {
     if (f->depth < 2 || f->out != 2 || !(anchor > 0))
-        return neuv_fail(NEUV_ERR_INPUT, "output-layer solve needs a hidden layer, 2 outputs and an anchor > 0");
+        return error_set(NEUV_ERR_INPUT, "output-layer solve needs a hidden layer, 2 outputs and an anchor > 0");
     return NEUV_OK;
 }
 
@@ -543,14 +543,14 @@ neuv_status param_output_solve_conformal(param_mlp *f, const param_solve_data *d
     nn_linear *out = &f->rest[f->depth - 2];
     double *theta = malloc(sizeof(double) * (size_t)n);
     solve_state st;
-    if (!theta) return neuv_fail_nomem("output-layer solve");
+    if (!theta) return error_nomem("output-layer solve");
     theta_from_layer(out, H, theta);
     s = solve_state_init(&st, f, d, anchor, 0, theta);
     if (s == NEUV_OK) {
         block all = {st.all_faces, st.all_verts, d->nf, d->nv};
         rep->energy_before = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
         int taken = solve_block(&st, &all, anchor, steps, theta);
-        if (taken < 0) s = neuv_fail_nomem("output-layer solve");
+        if (taken < 0) s = error_nomem("output-layer solve");
         else {
             rep->steps = taken;
             rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
@@ -579,7 +579,7 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
     double *shared = calloc((size_t)n, sizeof(double)), *theta = malloc(sizeof(double) * (size_t)n);
     double *last = malloc(sizeof(double) * 2 * (size_t)(W + 1));
     solve_state st;
-    if (!shared || !theta || !last) { free(shared); free(theta); free(last); return neuv_fail_nomem("output-layer solve"); }
+    if (!shared || !theta || !last) { free(shared); free(theta); free(last); return error_nomem("output-layer solve"); }
     theta_from_layer(&f->rest[f->depth - 2], W, last);
     for (int j = 0; j < 2; j++) {
         for (int i = 0; i < W; i++) shared[(size_t)j * (H + 1) + off + i] = last[(size_t)j * (W + 1) + i];
@@ -596,7 +596,7 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
                    st.face_start[c + 1] - st.face_start[c], st.vert_start[c + 1] - st.vert_start[c]};
         memcpy(theta, shared, sizeof(double) * (size_t)n);
         int taken = b.nf > 0 ? solve_block(&st, &b, anchor, steps, theta) : 0;
-        if (taken < 0) { s = neuv_fail_nomem("output-layer solve"); break; }
+        if (taken < 0) { s = error_nomem("output-layer solve"); break; }
         rep->heads_improved += taken > 0;
         rep->steps += taken;
         for (int i = 0; i < n; i++) heads[(size_t)c * n + i] = (float)theta[i];
@@ -628,7 +628,7 @@ neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const f
                                        const param_solve_data *d)
 {
     if (g->depth < 2 || g->out != 3 || f->depth < 2)
-        return neuv_fail(NEUV_ERR_INPUT, "output-layer solve needs hidden layers (inverse: 3 outputs)");
+        return error_set(NEUV_ERR_INPUT, "output-layer solve needs hidden layers (inverse: 3 outputs)");
     int H = g->width, K = H + 1, nv = d->nv, F = heads ? param_mlp_head_width(f) : f->width;
     nn_linear *out = &g->rest[g->depth - 2];
     float *uvf = malloc(sizeof(float) * 2 * (size_t)nv), *hf = malloc(sizeof(float) * (size_t)nv * F);
@@ -636,7 +636,7 @@ neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const f
     double *rhs = calloc((size_t)K * 3, sizeof(double));
     normal_eq q = {0};
     neuv_status s = NEUV_OK;
-    if (!uvf || !hf || !phi_f || !phi || !rhs) { s = neuv_fail_nomem("output-layer solve"); goto done; }
+    if (!uvf || !hf || !phi_f || !phi || !rhs) { s = error_nomem("output-layer solve"); goto done; }
     /* MLP_f's outputs at the vertices, then MLP_f⁻¹'s hidden layer there. */
     if ((s = hidden_at(f, d, d->f_in, d->f_in_dim, heads != NULL, phi_f)) != NEUV_OK) goto done;
     for (long i = 0; i < (long)nv * F; i++) hf[i] = (float)phi_f[i];
@@ -745,11 +745,11 @@ void param_solve_subdivided_free(param_solve_subdivided *sd)
 neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivided *out)
 {
     memset(out, 0, sizeof *out);
-    if (d->psi_per_vertex) return neuv_fail(NEUV_ERR_INPUT, "subdivided solve data needs a pooled ψ");
+    if (d->psi_per_vertex) return error_set(NEUV_ERR_INPUT, "subdivided solve data needs a pooled ψ");
     int nv = d->nv, nf = d->nf, dim = d->f_in_dim;
     edge_key *e = malloc(sizeof *e * 3 * (size_t)(nf > 0 ? nf : 1));
     int *mid = malloc(sizeof(int) * 3 * (size_t)(nf > 0 ? nf : 1));
-    if (!e || !mid) { free(e); free(mid); return neuv_fail_nomem("subdivided solve data"); }
+    if (!e || !mid) { free(e); free(mid); return error_nomem("subdivided solve data"); }
     for (int f = 0; f < nf; f++)
         for (int k = 0; k < 3; k++) {
             int a = d->tri[3 * f + k], b = d->tri[3 * f + (k + 1) % 3];
@@ -775,7 +775,7 @@ neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivi
     neuv_status s = NEUV_OK;
     if (!out->x || (d->f_in != d->x && !out->f_in) || !out->vchart || !out->tri || !out->fchart || !out->frame_inv ||
         !out->face_w || !out->fold_w || !pos) {
-        s = neuv_fail_nomem("subdivided solve data");
+        s = error_nomem("subdivided solve data");
         goto done;
     }
     memcpy(out->x, d->x, sizeof(float) * 3 * (size_t)nv);
@@ -813,7 +813,7 @@ neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivi
         float *w = malloc(sizeof(float) * 4 * (size_t)(nf > 0 ? nf : 1));
         if (!w || param_corners_build(out->tri + 3 * (size_t)nf, 4 * nf, &c) != NEUV_OK) {
             free(w);
-            s = neuv_fail_nomem("subdivided solve data");
+            s = error_nomem("subdivided solve data");
             goto done;
         }
         param_conformal_targets(pos, &c, out->frame_inv + 4 * (size_t)nf, w);

@@ -63,7 +63,7 @@ neuv_status patchnet_apply_preset(patchnet_options *o, const char *preset)
     } else if (!strcmp(preset, "paper")) {
         o->blocks = 4; o->width = 128; o->iters = 2000; o->geo_sources = 256;
     } else {
-        return neuv_fail(NEUV_ERR_INPUT, "unknown preset '%s' (expected fast or paper)", preset);
+        return error_set(NEUV_ERR_INPUT, "unknown preset '%s' (expected fast or paper)", preset);
     }
     o->k_eig = 64;
     return NEUV_OK;
@@ -73,7 +73,7 @@ neuv_status patchnet_model_create(patchnet_model *model, const patchnet_options 
 {
     memset(model, 0, sizeof *model);
     nn_params_init(&model->params);
-    if (k < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: number of patches must be >= 1, got %d", k);
+    if (k < 1) return error_set(NEUV_ERR_INPUT, "PatchNet: number of patches must be >= 1, got %d", k);
     diffusion_net_config cfg = {.in = in_dim, .width = o->width, .out = k, .blocks = o->blocks,
                                 .seed = o->seed};
     neuv_status st = diffusion_net_create(&model->net, &cfg, &model->params, "patchnet");
@@ -109,7 +109,7 @@ static neuv_status face_area_normal(const neuv_mesh *m, float **area, float **no
 {
     *area = malloc(sizeof(float) * (size_t)m->nf);
     *normal = malloc(sizeof(float) * 3 * (size_t)m->nf);
-    if (!*area || !*normal) return neuv_fail_nomem("face areas");
+    if (!*area || !*normal) return error_nomem("face areas");
     for (int f = 0; f < m->nf; f++) {
         double n[3];
         (*area)[f] = (float)mesh_face_area(m, f);
@@ -126,7 +126,7 @@ static int cmp_int(const void *a, const void *b) { int x = *(const int *)a, y = 
 static neuv_status sample_sources(int nf, int s, uint64_t seed, int *out)
 {
     int *perm = malloc(sizeof(int) * (size_t)nf);
-    if (!perm) return neuv_fail_nomem("L_geo sources");
+    if (!perm) return error_nomem("L_geo sources");
     for (int i = 0; i < nf; i++) perm[i] = i;
     rng r;
     rng_seed(&r, seed ^ 0x9e3779b97f4a7c15ull);
@@ -150,7 +150,7 @@ static neuv_status source_distances(const neuv_mesh *m, const int *src, int s, f
     if (st) return st;
     double diam = 0;
     double *d = malloc(sizeof(double) * (size_t)m->nf * s);
-    if (!d) { heat_geodesics_free(hg); return neuv_fail_nomem("L_geo distances"); }
+    if (!d) { heat_geodesics_free(hg); return error_nomem("L_geo distances"); }
     st = heat_geodesics_diameter(hg, &diam);
     if (!st) st = heat_geodesics_face_distances(hg, m, src, s, d);
     heat_geodesics_free(hg);
@@ -194,7 +194,7 @@ static neuv_status train_shape_init(train_shape *t, const patchnet_model *model,
                                     const operators *ops, const patchnet_options *o, uint64_t seed)
 {
     memset(t, 0, sizeof *t);
-    if (!m || !ops || m->nf < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: mesh has no faces");
+    if (!m || !ops || m->nf < 1) return error_set(NEUV_ERR_INPUT, "PatchNet: mesh has no faces");
     t->m = m;
     int nf = m->nf;
     t->S = o->geo_sources < 1 ? 128 : o->geo_sources;
@@ -204,12 +204,12 @@ static neuv_status train_shape_init(train_shape *t, const patchnet_model *model,
     t->g_ready = 1;
     if ((st = diffusion_net_input_features(m, ops, model->features, &t->x, &t->dim))) return st;
     if (t->dim != model->in_dim)
-        return neuv_fail(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim,
+        return error_set(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim,
                          t->dim);
     if ((st = face_area_normal(m, &t->area, &t->normal))) return st;
     t->src = malloc(sizeof(int) * (size_t)t->S);
     t->dist = malloc(sizeof(float) * (size_t)t->S * nf);
-    if (!t->src || !t->dist) return neuv_fail_nomem("PatchNet training");
+    if (!t->src || !t->dist) return error_nomem("PatchNet training");
     if ((st = sample_sources(nf, t->S, seed, t->src))) return st;
     return source_distances(m, t->src, t->S, t->dist);
 }
@@ -228,9 +228,9 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
 {
     patchnet_options def;
     if (!o) { patchnet_default_options(&def); o = &def; }
-    if (n_shapes < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: no shapes to train on");
+    if (n_shapes < 1) return error_set(NEUV_ERR_INPUT, "PatchNet: no shapes to train on");
     train_shape *sh = calloc((size_t)n_shapes, sizeof *sh);
-    if (!sh) return neuv_fail_nomem("PatchNet training");
+    if (!sh) return error_nomem("PatchNet training");
     neuv_status st = NEUV_OK;
     nn_ctx *ctx = NULL;
     nn_adam adam;
@@ -241,18 +241,18 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
     /* Shape i draws its L_geo sources with seed + i (one shape: the seed itself). */
     for (int i = 0; i < n_shapes && !st; i++) {
         st = train_shape_init(&sh[i], model, meshes[i], ops[i], o, o->seed + (uint64_t)i);
-        if (n_shapes > 1) neuv_progress("patches", 0, "geodesics of shape %d of %d", i + 1, n_shapes);
+        if (n_shapes > 1) log_progress("patches", 0, "geodesics of shape %d of %d", i + 1, n_shapes);
     }
     if (st) goto done;
     double t_geo = now_seconds() - t0;
     hist = malloc(sizeof(double) * (size_t)iters);
-    if (!hist) { st = neuv_fail_nomem("PatchNet training"); goto done; }
+    if (!hist) { st = error_nomem("PatchNet training"); goto done; }
     nn_adam_config acfg = nn_adam_defaults();
     acfg.lr = o->lr > 0 ? o->lr : 1e-3f;
     if ((st = nn_adam_init(&adam, &model->params, &acfg))) goto done;
     adam_ready = 1;
     ctx = nn_ctx_create(0);
-    if (!ctx) { st = neuv_fail_nomem("PatchNet arena"); goto done; }
+    if (!ctx) { st = error_nomem("PatchNet arena"); goto done; }
     /* The plateau windows hold whole rounds over the shapes, whose losses differ. */
     int W = o->plateau_window > 0 ? o->plateau_window : 25;
     W = (W + n_shapes - 1) / n_shapes * n_shapes;
@@ -275,13 +275,13 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
         nn_tensor *L = nn_add(ctx, Lc, Lg);
         nn_params_zero_grad(&model->params);
         if ((st = nn_backward(ctx, L))) goto done;
-        if (!isfinite(L->data[0])) { st = neuv_fail(NEUV_ERR_INTERNAL, "PatchNet: loss is not finite at iteration %d", it); goto done; }
+        if (!isfinite(L->data[0])) { st = error_set(NEUV_ERR_INTERNAL, "PatchNet: loss is not finite at iteration %d", it); goto done; }
         nn_adam_step(&adam);
         hist[it] = L->data[0];
         lc = Lc->data[0];
         lg = Lg->data[0];
         if (it % 10 == 0 || it == iters - 1)
-            neuv_progress("patches", (double)(it + 1) / iters, "iter %d loss %.4f", it + 1, hist[it]);
+            log_progress("patches", (double)(it + 1) / iters, "iter %d loss %.4f", it + 1, hist[it]);
         /* Plateau: the mean of the last W losses improves on the W before by
          * less than plateau_tol of the earlier mean. */
         if (it + 1 >= 2 * W) {
@@ -326,11 +326,11 @@ neuv_status patchnet_infer_features(const patchnet_model *model, const neuv_mesh
     nn_ctx *ctx = NULL;
     if ((st = diffusion_net_input_features(m, ops, model->features, &x, &dim))) goto done;
     if (dim != model->in_dim) {
-        st = neuv_fail(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim, dim);
+        st = error_set(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim, dim);
         goto done;
     }
     ctx = nn_ctx_create(0);
-    if (!ctx) { st = neuv_fail_nomem("PatchNet arena"); goto done; }
+    if (!ctx) { st = error_nomem("PatchNet arena"); goto done; }
     nn_tensor *hidden = NULL;
     nn_tensor *P = patchnet_forward(ctx, model, &g, nn_view(ctx, m->nv, dim, x), &hidden);
     if ((st = nn_ctx_status(ctx))) goto done;
@@ -345,7 +345,7 @@ neuv_status patchnet_infer_features(const patchnet_model *model, const neuv_mesh
     if (vertex_features) {
         size_t n = (size_t)hidden->rows * hidden->cols;
         float *vf = malloc(sizeof(float) * n);
-        if (!vf) { st = neuv_fail_nomem("PatchNet vertex features"); goto done; }
+        if (!vf) { st = error_nomem("PatchNet vertex features"); goto done; }
         memcpy(vf, hidden->data, sizeof(float) * n);
         *vertex_features = vf;
         if (feature_dim) *feature_dim = hidden->cols;
@@ -403,7 +403,7 @@ static neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, i
     free(vmap);
     free(fmap);
     double *uv = malloc(sizeof(double) * 2 * (size_t)sub->nv);
-    if (!uv) { mesh_free(sub); return neuv_fail_nomem("chart UVs"); }
+    if (!uv) { mesh_free(sub); return error_nomem("chart UVs"); }
     st = lscm(sub, uv);
     if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return st; }
     if (st == NEUV_OK) {
@@ -425,7 +425,7 @@ static neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, i
             if (!st && cvx < 0) st = NEUV_ERR_NOMEM;
             if (!st && convexity) *convexity = cvx;
         }
-        if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return neuv_fail_nomem("chart check"); }
+        if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return error_nomem("chart check"); }
     }
     free(uv);
     mesh_free(sub);
@@ -445,13 +445,13 @@ static neuv_status grow_quality(double **q, int **flip, int **dirty, int *cap, i
     int c = *cap ? *cap : 16;
     while (c < n) c *= 2;
     double *nq = realloc(*q, sizeof(double) * (size_t)c);
-    if (!nq) return neuv_fail_nomem("chart qualities");
+    if (!nq) return error_nomem("chart qualities");
     *q = nq;
     int *nfl = realloc(*flip, sizeof(int) * (size_t)c);
-    if (!nfl) return neuv_fail_nomem("chart qualities");
+    if (!nfl) return error_nomem("chart qualities");
     *flip = nfl;
     int *nd = realloc(*dirty, sizeof(int) * (size_t)c);
-    if (!nd) return neuv_fail_nomem("chart qualities");
+    if (!nd) return error_nomem("chart qualities");
     *dirty = nd;
     for (int i = *cap; i < c; i++) { nd[i] = 1; nq[i] = INFINITY; nfl[i] = 0; }
     *cap = c;
@@ -482,7 +482,7 @@ static neuv_status merge_charts(const neuv_mesh *m, double limit, double min_cvx
         moved = malloc(sizeof(int) * (size_t)nf);
         order = malloc(sizeof(int) * (size_t)(adj.n > 0 ? adj.n : 1));
         len = malloc(sizeof(double) * (size_t)(adj.n > 0 ? adj.n : 1));
-        if (!gone || !moved || !order || !len) { chart_adjacency_free(&adj); st = neuv_fail_nomem("chart merge"); break; }
+        if (!gone || !moved || !order || !len) { chart_adjacency_free(&adj); st = error_nomem("chart merge"); break; }
         /* Insertion order by length, descending (ties: pair order), stable. */
         for (int i = 0; i < adj.n; i++) {
             int j = i;
@@ -500,7 +500,7 @@ static neuv_status merge_charts(const neuv_mesh *m, double limit, double min_cvx
             double qa = INFINITY;
             int fl = 1, cross = 1;
             double cvx = 0;
-            if (disk < 0) st = neuv_fail_nomem("chart merge");
+            if (disk < 0) st = error_nomem("chart merge");
             else if (disk) st = chart_lscm_judge(m, face_chart, a, &qa, &fl, &cross, &cvx);
             if (!st && disk == 1 && qa < limit && fl == 0 && cross == 0 && cvx >= min_cvx) {
                 q[a] = qa;
@@ -553,7 +553,7 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
         /* Failing charts, worst first, each split once this round. */
         free(count);
         count = calloc((size_t)*n_charts, sizeof(int));
-        if (!count) { st = neuv_fail_nomem("chart sizes"); break; }
+        if (!count) { st = error_nomem("chart sizes"); break; }
         for (int f = 0; f < m->nf; f++) count[face_chart[f]]++;
         int any = 0;
         for (;;) {
@@ -575,7 +575,7 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
             any = 1;
         }
         if (!any) break;
-        neuv_progress("charts", 1.0, "%d charts after %d splits", *n_charts, splits);
+        log_progress("charts", 1.0, "%d charts after %d splits", *n_charts, splits);
     }
     /* Merging back is stricter than the split loop (see patchnet.c's header
      * and bench/RESULTS.md): a union passes under merge_distortion and
@@ -610,7 +610,7 @@ neuv_status patchnet_charts_from_model(const patchnet_model *model, const neuv_m
     patchnet_report local;
     if (!rep) { rep = &local; memset(rep, 0, sizeof *rep); }
     int *label = malloc(sizeof(int) * (size_t)m->nf);
-    if (!label) return neuv_fail_nomem("patch labels");
+    if (!label) return error_nomem("patch labels");
     neuv_status st = patchnet_infer_features(model, m, ops, label, vertex_features, feature_dim);
     if (!st) {
         charts_options copt;
@@ -637,7 +637,7 @@ neuv_status patchnet_segment_model(const neuv_mesh *m, const operators *ops, con
     if (vertex_features) *vertex_features = NULL;
     if (feature_dim) *feature_dim = 0;
     if (model_out) memset(model_out, 0, sizeof *model_out);
-    if (!m || !ops || m->nf < 1) return neuv_fail(NEUV_ERR_INPUT, "PatchNet: mesh has no faces");
+    if (!m || !ops || m->nf < 1) return error_set(NEUV_ERR_INPUT, "PatchNet: mesh has no faces");
     patchnet_report local;
     if (!rep) rep = &local;
     memset(rep, 0, sizeof *rep);

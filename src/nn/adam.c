@@ -31,18 +31,18 @@ neuv_status nn_adam_init(nn_adam *opt, nn_params *params, const nn_adam_config *
     opt->cfg = cfg ? *cfg : nn_adam_defaults();
     if (!(opt->cfg.lr > 0) || !(opt->cfg.beta1 >= 0 && opt->cfg.beta1 < 1) ||
         !(opt->cfg.beta2 >= 0 && opt->cfg.beta2 < 1) || !(opt->cfg.eps > 0) || !(opt->cfg.clip_norm >= 0))
-        return neuv_fail(NEUV_ERR_INPUT, "Adam: lr %g, betas %g/%g, eps %g, clip %g are not usable",
+        return error_set(NEUV_ERR_INPUT, "Adam: lr %g, betas %g/%g, eps %g, clip %g are not usable",
                          opt->cfg.lr, opt->cfg.beta1, opt->cfg.beta2, opt->cfg.eps, opt->cfg.clip_norm);
     opt->params = params;
     int n = params->n;
     opt->m = calloc(n ? (size_t)n : 1, sizeof *opt->m);
     opt->v = calloc(n ? (size_t)n : 1, sizeof *opt->v);
-    if (!opt->m || !opt->v) { nn_adam_free(opt); return neuv_fail_nomem("Adam state"); }
+    if (!opt->m || !opt->v) { nn_adam_free(opt); return error_nomem("Adam state"); }
     for (int i = 0; i < n; i++) {
         size_t sz = (size_t)params->t[i]->rows * (size_t)params->t[i]->cols;
         opt->m[i] = calloc(sz, sizeof(float));
         opt->v[i] = calloc(sz, sizeof(float));
-        if (!opt->m[i] || !opt->v[i]) { nn_adam_free(opt); return neuv_fail_nomem("Adam state"); }
+        if (!opt->m[i] || !opt->v[i]) { nn_adam_free(opt); return error_nomem("Adam state"); }
     }
     return NEUV_OK;
 }

@@ -42,9 +42,9 @@ neuv_status nn_backward(nn_ctx *ctx, nn_tensor *loss)
 {
     neuv_status st = nn_ctx_status(ctx);
     if (st != NEUV_OK) return st;
-    if (!loss) return neuv_fail(NEUV_ERR_INTERNAL, "backward: no loss tensor");
+    if (!loss) return error_set(NEUV_ERR_INTERNAL, "backward: no loss tensor");
     if (loss->rows != 1 || loss->cols != 1)
-        return neuv_fail(NEUV_ERR_INPUT, "backward: loss is %d by %d, not a scalar", loss->rows, loss->cols);
+        return error_set(NEUV_ERR_INPUT, "backward: loss is %d by %d, not a scalar", loss->rows, loss->cols);
     if (!loss->requires_grad) return NEUV_OK; /* no parameter upstream: nothing to do */
     int acc = 0;
     float *g = nn_grad_for(ctx, loss, &acc);

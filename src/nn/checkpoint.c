@@ -74,15 +74,15 @@ neuv_status nn_checkpoint_save(const char *path, const char *config,
                                nn_tensor *const *t, const char *const *names, int n)
 {
     if (!config) config = "{}";
-    if (n < 0) return neuv_fail(NEUV_ERR_INTERNAL, "checkpoint: %d tensors", n);
+    if (n < 0) return error_set(NEUV_ERR_INTERNAL, "checkpoint: %d tensors", n);
     for (int i = 0; i < n; i++) {
         const char *nm = names ? names[i] : t[i]->name;
         if (!nm || !name_ok(nm, strlen(nm)))
-            return neuv_fail(NEUV_ERR_INPUT, "checkpoint: tensor %d needs a printable name of 1..%d characters",
+            return error_set(NEUV_ERR_INPUT, "checkpoint: tensor %d needs a printable name of 1..%d characters",
                              i, NN_CHECKPOINT_MAX_NAME);
     }
     size_t hlen = strlen(config);
-    if (hlen > UINT32_MAX) return neuv_fail(NEUV_ERR_INPUT, "checkpoint: header too long");
+    if (hlen > UINT32_MAX) return error_set(NEUV_ERR_INPUT, "checkpoint: header too long");
     atomic_file af;
     neuv_status st = atomic_file_open(&af, path);
     if (st != NEUV_OK) return st;
@@ -100,7 +100,7 @@ neuv_status nn_checkpoint_save(const char *path, const char *config,
     }
     if (!ok) {
         atomic_file_abort(&af);
-        return neuv_fail(NEUV_ERR_IO, "cannot write checkpoint %s", path);
+        return error_set(NEUV_ERR_IO, "cannot write checkpoint %s", path);
     }
     return atomic_file_commit(&af);
 }
@@ -140,26 +140,26 @@ void nn_checkpoint_free(nn_checkpoint *c)
 
 static neuv_status truncated(const char *what, size_t need, size_t left)
 {
-    return neuv_fail(NEUV_ERR_INPUT, "truncated checkpoint: %s needs %zu bytes, %zu left", what, need, left);
+    return error_set(NEUV_ERR_INPUT, "truncated checkpoint: %s needs %zu bytes, %zu left", what, need, left);
 }
 
 static neuv_status parse(reader *r, nn_checkpoint *out)
 {
     if (r->left < 8) return truncated("magic", 8, r->left);
-    if (memcmp(r->p, MAGIC, 8) != 0) return neuv_fail(NEUV_ERR_INPUT, "not a neuv checkpoint (bad magic)");
+    if (memcmp(r->p, MAGIC, 8) != 0) return error_set(NEUV_ERR_INPUT, "not a neuv checkpoint (bad magic)");
     r->p += 8;
     r->left -= 8;
     uint32_t version, hlen, hcrc = 0, count;
     if (!read_u32(r, &version)) return truncated("version", 4, r->left);
     if (version != NN_CHECKPOINT_VERSION)
-        return neuv_fail(NEUV_ERR_INPUT, "wrong checkpoint version %u (this neuv reads %d)", version,
+        return error_set(NEUV_ERR_INPUT, "wrong checkpoint version %u (this neuv reads %d)", version,
                          NN_CHECKPOINT_VERSION);
     out->version = version;
     if (!read_u32(r, &hlen)) return truncated("header length", 4, r->left);
     if ((size_t)hlen + 4 > r->left) return truncated("JSON header", (size_t)hlen + 4, r->left);
-    if (memchr(r->p, 0, hlen)) return neuv_fail(NEUV_ERR_INPUT, "checkpoint header contains a NUL byte");
+    if (memchr(r->p, 0, hlen)) return error_set(NEUV_ERR_INPUT, "checkpoint header contains a NUL byte");
     out->config = malloc((size_t)hlen + 1);
-    if (!out->config) return neuv_fail_nomem("checkpoint header");
+    if (!out->config) return error_nomem("checkpoint header");
     memcpy(out->config, r->p, hlen);
     out->config[hlen] = '\0';
     uint32_t crc = crc32_bytes(0, r->p, hlen);
@@ -167,46 +167,46 @@ static neuv_status parse(reader *r, nn_checkpoint *out)
     r->left -= hlen;
     read_u32(r, &hcrc);
     if (crc != hcrc)
-        return neuv_fail(NEUV_ERR_INPUT, "CRC mismatch in checkpoint header (stored %08x, computed %08x)", hcrc, crc);
+        return error_set(NEUV_ERR_INPUT, "CRC mismatch in checkpoint header (stored %08x, computed %08x)", hcrc, crc);
     if (!read_u32(r, &count)) return truncated("tensor count", 4, r->left);
     if ((uint64_t)count * MIN_TENSOR_RECORD > r->left)
-        return neuv_fail(NEUV_ERR_INPUT, "truncated checkpoint: %u tensors announced but only %zu bytes follow",
+        return error_set(NEUV_ERR_INPUT, "truncated checkpoint: %u tensors announced but only %zu bytes follow",
                          count, r->left);
     out->t = calloc(count ? count : 1, sizeof *out->t);
-    if (!out->t) return neuv_fail_nomem("checkpoint tensor list");
+    if (!out->t) return error_nomem("checkpoint tensor list");
     for (uint32_t i = 0; i < count; i++) {
         uint32_t nlen, rows, cols, dcrc;
         if (!read_u32(r, &nlen)) return truncated("tensor name length", 4, r->left);
         if (nlen < 1 || nlen > NN_CHECKPOINT_MAX_NAME)
-            return neuv_fail(NEUV_ERR_INPUT, "tensor %u: name length %u outside 1..%d", i, nlen,
+            return error_set(NEUV_ERR_INPUT, "tensor %u: name length %u outside 1..%d", i, nlen,
                              NN_CHECKPOINT_MAX_NAME);
         if (nlen > r->left) return truncated("tensor name", nlen, r->left);
         if (!name_ok((const char *)r->p, nlen))
-            return neuv_fail(NEUV_ERR_INPUT, "tensor %u: name has non-printable bytes", i);
+            return error_set(NEUV_ERR_INPUT, "tensor %u: name has non-printable bytes", i);
         char name[NN_CHECKPOINT_MAX_NAME + 1];
         memcpy(name, r->p, nlen);
         name[nlen] = '\0';
         r->p += nlen;
         r->left -= nlen;
         if (r->left < 12)
-            return neuv_fail(NEUV_ERR_INPUT, "truncated checkpoint: tensor '%s' shape and CRC need 12 bytes, %zu left",
+            return error_set(NEUV_ERR_INPUT, "truncated checkpoint: tensor '%s' shape and CRC need 12 bytes, %zu left",
                              name, r->left);
         read_u32(r, &rows);
         read_u32(r, &cols);
         read_u32(r, &dcrc);
         if (rows == 0 || cols == 0 || rows > INT32_MAX || cols > INT32_MAX || (uint64_t)rows * cols > INT32_MAX)
-            return neuv_fail(NEUV_ERR_INPUT, "tensor '%s': shape %u by %u is not usable", name, rows, cols);
+            return error_set(NEUV_ERR_INPUT, "tensor '%s': shape %u by %u is not usable", name, rows, cols);
         uint64_t bytes = (uint64_t)rows * cols * 4;
         if (bytes > r->left) {
-            return neuv_fail(NEUV_ERR_INPUT, "truncated checkpoint: tensor '%s' needs %llu bytes, %zu left", name,
+            return error_set(NEUV_ERR_INPUT, "truncated checkpoint: tensor '%s' needs %llu bytes, %zu left", name,
                              (unsigned long long)bytes, r->left);
         }
         for (uint32_t k = 0; k < i; k++)
             if (!strcmp(out->t[k].name, name))
-                return neuv_fail(NEUV_ERR_INPUT, "tensor '%s' appears twice", name);
+                return error_set(NEUV_ERR_INPUT, "tensor '%s' appears twice", name);
         uint32_t got = crc32_bytes(record_crc(name, nlen, rows, cols), r->p, (size_t)bytes);
         if (got != dcrc)
-            return neuv_fail(NEUV_ERR_INPUT, "CRC mismatch in tensor '%s' (stored %08x, computed %08x)", name,
+            return error_set(NEUV_ERR_INPUT, "CRC mismatch in tensor '%s' (stored %08x, computed %08x)", name,
                              dcrc, got);
         nn_checkpoint_tensor *t = &out->t[i];
         t->name = strdup(name);
@@ -214,7 +214,7 @@ static neuv_status parse(reader *r, nn_checkpoint *out)
         if (!t->name || !t->data) {
             free(t->name); free(t->data);
             t->name = NULL; t->data = NULL;
-            return neuv_fail_nomem("checkpoint tensor");
+            return error_nomem("checkpoint tensor");
         }
         t->rows = (int)rows;
         t->cols = (int)cols;
@@ -227,7 +227,7 @@ static neuv_status parse(reader *r, nn_checkpoint *out)
         r->p += bytes;
         r->left -= (size_t)bytes;
     }
-    if (r->left) return neuv_fail(NEUV_ERR_INPUT, "%zu unexpected bytes after the last tensor", r->left);
+    if (r->left) return error_set(NEUV_ERR_INPUT, "%zu unexpected bytes after the last tensor", r->left);
     return NEUV_OK;
 }
 
@@ -235,7 +235,7 @@ neuv_status nn_checkpoint_parse(const void *bytes, size_t len, nn_checkpoint *ou
 {
     memset(out, 0, sizeof *out);
     reader r = {bytes, len};
-    if (!bytes && len) return neuv_fail(NEUV_ERR_INTERNAL, "checkpoint: no bytes");
+    if (!bytes && len) return error_set(NEUV_ERR_INTERNAL, "checkpoint: no bytes");
     neuv_status st = parse(&r, out);
     if (st != NEUV_OK) nn_checkpoint_free(out);
     return st;
@@ -245,19 +245,19 @@ neuv_status nn_checkpoint_load(const char *path, nn_checkpoint *out)
 {
     memset(out, 0, sizeof *out);
     FILE *fp = fopen(path, "rb");
-    if (!fp) return neuv_fail(NEUV_ERR_IO, "cannot open: %s", strerror(errno));
+    if (!fp) return error_set(NEUV_ERR_IO, "cannot open: %s", strerror(errno));
     struct stat info;
     if (fstat(fileno(fp), &info) != 0 || !S_ISREG(info.st_mode)) {
         fclose(fp);
-        return neuv_fail(NEUV_ERR_IO, "cannot read: not a regular file");
+        return error_set(NEUV_ERR_IO, "cannot read: not a regular file");
     }
     long size = (long)info.st_size;
     unsigned char *buf = malloc(size ? (size_t)size : 1);
-    if (!buf) { fclose(fp); return neuv_fail_nomem("checkpoint file"); }
+    if (!buf) { fclose(fp); return error_nomem("checkpoint file"); }
     size_t got = fread(buf, 1, (size_t)size, fp);
     int err = ferror(fp);
     fclose(fp);
-    if (err || got != (size_t)size) { free(buf); return neuv_fail(NEUV_ERR_IO, "read failed"); }
+    if (err || got != (size_t)size) { free(buf); return error_set(NEUV_ERR_IO, "read failed"); }
     neuv_status st = nn_checkpoint_parse(buf, (size_t)size, out);
     free(buf);
     return st;
@@ -275,9 +275,9 @@ neuv_status nn_checkpoint_restore_params(const nn_checkpoint *c, nn_params *ps)
     for (int i = 0; i < ps->n; i++) {
         nn_tensor *p = ps->t[i];
         const nn_checkpoint_tensor *t = nn_checkpoint_find(c, p->name);
-        if (!t) return neuv_fail(NEUV_ERR_INPUT, "checkpoint has no tensor '%s'", p->name);
+        if (!t) return error_set(NEUV_ERR_INPUT, "checkpoint has no tensor '%s'", p->name);
         if (t->rows != p->rows || t->cols != p->cols)
-            return neuv_fail(NEUV_ERR_INPUT, "tensor '%s' is %d by %d in the checkpoint, the model needs %d by %d",
+            return error_set(NEUV_ERR_INPUT, "tensor '%s' is %d by %d in the checkpoint, the model needs %d by %d",
                              p->name, t->rows, t->cols, p->rows, p->cols);
     }
     for (int i = 0; i < ps->n; i++) {

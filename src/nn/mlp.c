@@ -13,7 +13,7 @@ neuv_status nn_linear_create(nn_linear *l, int in, int out, nn_activation act,
                              struct rng *r, nn_params *params, const char *prefix)
 {
     memset(l, 0, sizeof *l);
-    if (in <= 0 || out <= 0) return neuv_fail(NEUV_ERR_INPUT, "linear layer '%s': sizes %d -> %d", prefix, in, out);
+    if (in <= 0 || out <= 0) return error_set(NEUV_ERR_INPUT, "linear layer '%s': sizes %d -> %d", prefix, in, out);
     char name[256];
     snprintf(name, sizeof name, "%s.w", prefix);
     l->w = nn_params_add(params, in, out, name);
@@ -50,20 +50,20 @@ neuv_status nn_mlp_create(nn_mlp *m, const nn_mlp_config *cfg, nn_params *params
 {
     memset(m, 0, sizeof *m);
     if (cfg->depth < 1 || cfg->in <= 0 || cfg->out <= 0 || (cfg->depth > 1 && cfg->width <= 0))
-        return neuv_fail(NEUV_ERR_INPUT, "MLP '%s': depth %d, sizes %d -> %d -> %d are not usable", prefix,
+        return error_set(NEUV_ERR_INPUT, "MLP '%s': depth %d, sizes %d -> %d -> %d are not usable", prefix,
                          cfg->depth, cfg->in, cfg->width, cfg->out);
     if (cfg->hidden == NN_ACT_NONE && cfg->depth > 1)
-        return neuv_fail(NEUV_ERR_INPUT, "MLP '%s': hidden activation must be relu, leaky_relu or tanh", prefix);
+        return error_set(NEUV_ERR_INPUT, "MLP '%s': hidden activation must be relu, leaky_relu or tanh", prefix);
     if (cfg->output != NN_ACT_NONE && cfg->output != NN_ACT_TANH)
-        return neuv_fail(NEUV_ERR_INPUT, "MLP '%s': output activation must be none or tanh", prefix);
+        return error_set(NEUV_ERR_INPUT, "MLP '%s': output activation must be none or tanh", prefix);
     if (cfg->dropout != 0)
-        return neuv_fail(NEUV_ERR_INPUT, "MLP '%s': dropout is not supported (set it to 0)", prefix);
+        return error_set(NEUV_ERR_INPUT, "MLP '%s': dropout is not supported (set it to 0)", prefix);
     m->cfg = *cfg;
     if (m->cfg.leaky_slope == 0) m->cfg.leaky_slope = 0.01f;
     if (!(m->cfg.leaky_slope > 0 && m->cfg.leaky_slope < 1))
-        return neuv_fail(NEUV_ERR_INPUT, "MLP '%s': LeakyReLU slope %g outside (0, 1)", prefix, m->cfg.leaky_slope);
+        return error_set(NEUV_ERR_INPUT, "MLP '%s': LeakyReLU slope %g outside (0, 1)", prefix, m->cfg.leaky_slope);
     m->layers = calloc((size_t)cfg->depth, sizeof *m->layers);
-    if (!m->layers) return neuv_fail_nomem("MLP layers");
+    if (!m->layers) return error_nomem("MLP layers");
     m->n = cfg->depth;
     rng r;
     rng_seed(&r, cfg->seed);

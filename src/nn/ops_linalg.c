@@ -269,14 +269,14 @@ neuv_status nn_sparse_from_csr(const sparse_matrix *a, nn_sparse *out)
 {
     memset(out, 0, sizeof *out);
     if (!a || a->rows <= 0 || a->cols <= 0 || !a->row_start)
-        return neuv_fail(NEUV_ERR_INPUT, "sparse operator is empty");
+        return error_set(NEUV_ERR_INPUT, "sparse operator is empty");
     size_t nnz = (size_t)a->row_start[a->rows];
     for (int i = 0; i < a->rows; i++)
         if (a->row_start[i] > a->row_start[i + 1])
-            return neuv_fail(NEUV_ERR_INPUT, "sparse operator row %d has a negative length", i);
+            return error_set(NEUV_ERR_INPUT, "sparse operator row %d has a negative length", i);
     for (size_t e = 0; e < nnz; e++)
         if (a->col[e] < 0 || a->col[e] >= a->cols)
-            return neuv_fail(NEUV_ERR_INPUT, "sparse operator entry %zu has column %d outside 0..%d", e,
+            return error_set(NEUV_ERR_INPUT, "sparse operator entry %zu has column %d outside 0..%d", e,
                              a->col[e], a->cols - 1);
     out->rows = a->rows;
     out->cols = a->cols;
@@ -289,7 +289,7 @@ neuv_status nn_sparse_from_csr(const sparse_matrix *a, nn_sparse *out)
     out->t_val = malloc(alloc * sizeof(float));
     if (!out->row_start || !out->col || !out->val || !out->t_row_start || !out->t_col || !out->t_val) {
         nn_sparse_free(out);
-        return neuv_fail_nomem("float32 sparse operator");
+        return error_nomem("float32 sparse operator");
     }
     memcpy(out->row_start, a->row_start, (size_t)(a->rows + 1) * sizeof(int));
     memcpy(out->col, a->col, nnz * sizeof(int));
@@ -299,7 +299,7 @@ neuv_status nn_sparse_from_csr(const sparse_matrix *a, nn_sparse *out)
     for (size_t e = 0; e < nnz; e++) out->t_row_start[a->col[e] + 1]++;
     for (int j = 0; j < a->cols; j++) out->t_row_start[j + 1] += out->t_row_start[j];
     int *fill = malloc((size_t)a->cols * sizeof(int));
-    if (!fill) { nn_sparse_free(out); return neuv_fail_nomem("sparse transpose"); }
+    if (!fill) { nn_sparse_free(out); return error_nomem("sparse transpose"); }
     memcpy(fill, out->t_row_start, (size_t)a->cols * sizeof(int));
     for (int i = 0; i < a->rows; i++)
         for (int e = a->row_start[i]; e < a->row_start[i + 1]; e++) {

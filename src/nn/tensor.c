@@ -49,10 +49,10 @@ static void blocks_free(arena_block *b)
 nn_ctx *nn_ctx_create(size_t initial_bytes)
 {
     nn_ctx *c = calloc(1, sizeof *c);
-    if (!c) { neuv_fail_nomem("neural network context"); return NULL; }
+    if (!c) { error_nomem("neural network context"); return NULL; }
     if (initial_bytes) {
         c->first = block_create(initial_bytes);
-        if (!c->first) { free(c); neuv_fail_nomem("neural network arena"); return NULL; }
+        if (!c->first) { free(c); error_nomem("neural network arena"); return NULL; }
         c->grow_count = 1;
     }
     c->cur = c->first;
@@ -91,7 +91,7 @@ void nn_ctx_reset(nn_ctx *ctx)
 neuv_status nn_ctx_status(const nn_ctx *ctx)
 {
     if (!ctx) return NEUV_ERR_INTERNAL;
-    if (ctx->status != NEUV_OK) return neuv_fail(ctx->status, "%s", ctx->message);
+    if (ctx->status != NEUV_OK) return error_set(ctx->status, "%s", ctx->message);
     return NEUV_OK;
 }
 
@@ -121,7 +121,7 @@ nn_tensor *nn_ctx_fail(nn_ctx *ctx, neuv_status code, const char *fmt, ...)
         vsnprintf(ctx->message, sizeof ctx->message, fmt, ap);
         va_end(ap);
         ctx->status = code;
-        neuv_fail(code, "%s", ctx->message);
+        error_set(code, "%s", ctx->message);
     }
     return NULL;
 }
@@ -239,7 +239,7 @@ nn_tensor *nn_fill(nn_ctx *ctx, int rows, int cols, float value)
 nn_tensor *nn_param_create(int rows, int cols, const char *name)
 {
     if (rows <= 0 || cols <= 0) {
-        neuv_fail(NEUV_ERR_INPUT, "parameter '%s': bad shape %d by %d", name ? name : "", rows, cols);
+        error_set(NEUV_ERR_INPUT, "parameter '%s': bad shape %d by %d", name ? name : "", rows, cols);
         return NULL;
     }
     nn_tensor *p = calloc(1, sizeof *p);
@@ -254,7 +254,7 @@ nn_tensor *nn_param_create(int rows, int cols, const char *name)
         if (p) { free(p->data); free(p->grad); }
         free(p);
         free(nm);
-        neuv_fail_nomem("parameter");
+        error_nomem("parameter");
         return NULL;
     }
     p->rows = rows;
@@ -286,12 +286,12 @@ nn_tensor *nn_params_find(const nn_params *ps, const char *name)
 
 nn_tensor *nn_params_add(nn_params *ps, int rows, int cols, const char *name)
 {
-    if (!name || !*name) { neuv_fail(NEUV_ERR_INPUT, "parameter needs a name"); return NULL; }
-    if (nn_params_find(ps, name)) { neuv_fail(NEUV_ERR_INPUT, "duplicate parameter name '%s'", name); return NULL; }
+    if (!name || !*name) { error_set(NEUV_ERR_INPUT, "parameter needs a name"); return NULL; }
+    if (nn_params_find(ps, name)) { error_set(NEUV_ERR_INPUT, "duplicate parameter name '%s'", name); return NULL; }
     if (ps->n == ps->cap) {
         int cap = ps->cap ? ps->cap * 2 : 16;
         nn_tensor **t = realloc(ps->t, (size_t)cap * sizeof *t);
-        if (!t) { neuv_fail_nomem("parameter list"); return NULL; }
+        if (!t) { error_nomem("parameter list"); return NULL; }
         ps->t = t;
         ps->cap = cap;
     }

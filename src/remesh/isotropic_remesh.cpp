@@ -182,23 +182,23 @@ neuv_status remesh_checked(const neuv_mesh *m, const isotropic_options &o, neuv_
     for (int v = 0; v < m->nv; v++) {
         const double *p = m->pos + 3 * (size_t)v;
         if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-            return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing: vertex %d has a non-finite coordinate", v);
+            return error_set(NEUV_ERR_INPUT, "isotropic remeshing: vertex %d has a non-finite coordinate", v);
         points.emplace_back(p[0], p[1], p[2]);
     }
     for (int f = 0; f < m->nf; f++)
         for (int k = 0; k < 3; k++) {
             int v = m->tri[3 * (size_t)f + k];
             if (v < 0 || v >= m->nv)
-                return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing: face %d uses vertex %d of %d", f, v, m->nv);
+                return error_set(NEUV_ERR_INPUT, "isotropic remeshing: face %d uses vertex %d of %d", f, v, m->nv);
             faces[(size_t)f][k] = v;
         }
     if (!PMP::is_polygon_soup_a_polygon_mesh(faces))
-        return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing needs a manifold, oriented triangle mesh: found an "
+        return error_set(NEUV_ERR_INPUT, "isotropic remeshing needs a manifold, oriented triangle mesh: found an "
                                          "edge with more than two faces, a pinched vertex, a face with a repeated "
                                          "vertex, or two faces of opposite orientation across an edge (a "
                                          "non-orientable surface such as a Moebius strip, or an uncleaned mesh)");
     double area = mesh_total_area(m);
-    if (!(area > 0)) return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing: the mesh has zero area");
+    if (!(area > 0)) return error_set(NEUV_ERR_INPUT, "isotropic remeshing: the mesh has zero area");
     double L = o.target_edge_length;
     if (!(L > 0)) L = std::sqrt(4.0 * area / (std::sqrt(3.0) * o.target_faces));
 
@@ -211,7 +211,7 @@ neuv_status remesh_checked(const neuv_mesh *m, const isotropic_options &o, neuv_
     for (;;) {
         double expected = equilateral_faces(area, L);
         if (expected > ISOTROPIC_MAX_FACES)
-            return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing: edge length %g would give about %.3g faces "
+            return error_set(NEUV_ERR_INPUT, "isotropic remeshing: edge length %g would give about %.3g faces "
                                              "(over %.0g)", L, expected, ISOTROPIC_MAX_FACES);
         remesh_once(points, faces, o, L, r);
         rounds++;
@@ -224,14 +224,14 @@ neuv_status remesh_checked(const neuv_mesh *m, const isotropic_options &o, neuv_
         L *= std::sqrt(got / want);
     }
     L = best_L;
-    if (best.tri.empty()) return neuv_fail(NEUV_ERR_INTERNAL, "isotropic remeshing at edge length %g left no face", L);
+    if (best.tri.empty()) return error_set(NEUV_ERR_INTERNAL, "isotropic remeshing at edge length %g left no face", L);
     if (best.pos.size() / 3 > (size_t)INT32_MAX / 3 || best.tri.size() / 3 > (size_t)INT32_MAX / 3)
-        return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing: the output is too large");
+        return error_set(NEUV_ERR_INPUT, "isotropic remeshing: the output is too large");
     double dist = 0;
     neuv_status st = max_distance_to(m, best.pos, &dist);
     if (st) return st;
     neuv_mesh *o_mesh = mesh_create((int)(best.pos.size() / 3), (int)(best.tri.size() / 3), 0);
-    if (!o_mesh) return neuv_fail_nomem("the remeshed mesh");
+    if (!o_mesh) return error_nomem("the remeshed mesh");
     std::copy(best.pos.begin(), best.pos.end(), o_mesh->pos);
     std::copy(best.tri.begin(), best.tri.end(), o_mesh->tri);
     *out = o_mesh;
@@ -263,29 +263,29 @@ extern "C" neuv_status mesh_remesh_isotropic(const neuv_mesh *m, const isotropic
 {
     *out = NULL;
     if (report) *report = isotropic_report();
-    if (!opts) return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing needs a target edge length or face count");
+    if (!opts) return error_set(NEUV_ERR_INPUT, "isotropic remeshing needs a target edge length or face count");
     if (!(opts->target_edge_length > 0) && !(opts->target_edge_length == 0 && opts->target_faces >= 4))
-        return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing needs an edge length > 0 or at least 4 faces "
+        return error_set(NEUV_ERR_INPUT, "isotropic remeshing needs an edge length > 0 or at least 4 faces "
                                          "(got %g and %d)", opts->target_edge_length, opts->target_faces);
     if (opts->iterations < 1 || opts->iterations > 100)
-        return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing: iterations must be in 1..100, got %d", opts->iterations);
+        return error_set(NEUV_ERR_INPUT, "isotropic remeshing: iterations must be in 1..100, got %d", opts->iterations);
     if (!(opts->feature_degrees > 0))
-        return neuv_fail(NEUV_ERR_INPUT, "isotropic remeshing: feature angle must be > 0, got %g", opts->feature_degrees);
-    if (m->nf <= 0) return neuv_fail(NEUV_ERR_INPUT, "cannot remesh a mesh without faces");
+        return error_set(NEUV_ERR_INPUT, "isotropic remeshing: feature angle must be > 0, got %g", opts->feature_degrees);
+    if (m->nf <= 0) return error_set(NEUV_ERR_INPUT, "cannot remesh a mesh without faces");
     CGAL::Failure_function old_warning = CGAL::set_warning_handler(silent_warning);
     neuv_status st;
     try {
         st = remesh_checked(m, *opts, out, report);
     } catch (const std::bad_alloc &) {
-        st = neuv_fail_nomem("isotropic remeshing");
+        st = error_nomem("isotropic remeshing");
     } catch (const CGAL::Failure_exception &e) {
-        st = neuv_fail(NEUV_ERR_INTERNAL, "isotropic remeshing failed in CGAL: %s%s%s (%s:%d)",
+        st = error_set(NEUV_ERR_INTERNAL, "isotropic remeshing failed in CGAL: %s%s%s (%s:%d)",
                        one_line(e.expression()).c_str(), e.message().empty() ? "" : ": ",
                        one_line(e.message()).c_str(), e.filename().c_str(), e.line_number());
     } catch (const std::exception &e) {
-        st = neuv_fail(NEUV_ERR_INTERNAL, "isotropic remeshing failed: %s", one_line(e.what()).c_str());
+        st = error_set(NEUV_ERR_INTERNAL, "isotropic remeshing failed: %s", one_line(e.what()).c_str());
     } catch (...) {
-        st = neuv_fail(NEUV_ERR_INTERNAL, "isotropic remeshing failed with an unknown exception");
+        st = error_set(NEUV_ERR_INTERNAL, "isotropic remeshing failed with an unknown exception");
     }
     CGAL::set_warning_handler(old_warning);
     if (st != NEUV_OK && *out) {

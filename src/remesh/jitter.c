@@ -75,7 +75,7 @@ neuv_status mesh_jitter(neuv_mesh *m, uint64_t seed, const jitter_options *opts,
     if (opts) o = *opts; else jitter_default_options(&o);
     jitter_report rep;
     memset(&rep, 0, sizeof rep);
-    if (m->nf <= 0) return neuv_fail(NEUV_ERR_INPUT, "cannot jitter a mesh without faces");
+    if (m->nf <= 0) return error_set(NEUV_ERR_INPUT, "cannot jitter a mesh without faces");
     int has_uv = m->nuv > 0 && m->tri_uv;
     int nv = m->nv, nf = m->nf;
     neuv_status st = NEUV_OK;
@@ -230,7 +230,7 @@ neuv_status mesh_jitter(neuv_mesh *m, uint64_t seed, const jitter_options *opts,
     if (report) *report = rep;
     goto done;
 nomem:
-    st = neuv_fail(NEUV_ERR_NOMEM, "out of memory jittering %d faces", nf);
+    st = error_set(NEUV_ERR_NOMEM, "out of memory jittering %d faces", nf);
 done:
     free(emin); free(normal); free(nb); free(bnbr); free(vuv); free(fixed);
     free(cx.vf_start); free(cx.vf); free(cx.orig_cross);
@@ -260,7 +260,7 @@ static neuv_status flip_edges(neuv_mesh *m, const edge_faces *ef, rng *r, const 
     if (!order || !touched || !map_ok) {
         free(order); free(touched);
         if (map_ok) edge_map_free(&present);
-        return neuv_fail(NEUV_ERR_NOMEM, "out of memory flipping edges");
+        return error_set(NEUV_ERR_NOMEM, "out of memory flipping edges");
     }
     for (int e = 0; e < ne; e++) {
         order[e] = e;
@@ -319,5 +319,5 @@ static neuv_status flip_edges(neuv_mesh *m, const edge_faces *ef, rng *r, const 
     return NEUV_OK;
 nomem:
     free(order); free(touched); edge_map_free(&present);
-    return neuv_fail(NEUV_ERR_NOMEM, "out of memory flipping edges");
+    return error_set(NEUV_ERR_NOMEM, "out of memory flipping edges");
 }

@@ -11,11 +11,11 @@
 neuv_status mesh_simplify(const neuv_mesh *m, double ratio, neuv_mesh **out)
 {
     *out = NULL;
-    if (!(ratio > 0 && ratio <= 1)) return neuv_fail(NEUV_ERR_INPUT, "simplify ratio must be in (0, 1], got %g", ratio);
-    if (m->nf <= 0) return neuv_fail(NEUV_ERR_INPUT, "cannot simplify a mesh without faces");
+    if (!(ratio > 0 && ratio <= 1)) return error_set(NEUV_ERR_INPUT, "simplify ratio must be in (0, 1], got %g", ratio);
+    if (m->nf <= 0) return error_set(NEUV_ERR_INPUT, "cannot simplify a mesh without faces");
     if (ratio == 1) {
         *out = mesh_clone(m);
-        return *out ? NEUV_OK : neuv_fail(NEUV_ERR_NOMEM, "out of memory copying the mesh");
+        return *out ? NEUV_OK : error_set(NEUV_ERR_NOMEM, "out of memory copying the mesh");
     }
     int has_uv = m->nuv > 0 && m->tri_uv;
     size_t nc = (size_t)m->nf * 3;
@@ -79,12 +79,12 @@ neuv_status mesh_simplify(const neuv_mesh *m, double ratio, neuv_mesh **out)
         o->tri[c] = vmap[wedge_v[dst[c]]];
         if (has_uv) o->tri_uv[c] = uvmap[wedge_uv[dst[c]]];
     }
-    if (dropped) neuv_log(NEUV_LOG_WARN, "simplify: dropped %d collapsed faces that joined two UV copies of one vertex", dropped);
-    neuv_log(NEUV_LOG_INFO, "simplify: %d -> %d faces (target %zu), relative error %.3g", m->nf, nf, target, (double)err);
+    if (dropped) log_message(NEUV_LOG_WARN, "simplify: dropped %d collapsed faces that joined two UV copies of one vertex", dropped);
+    log_message(NEUV_LOG_INFO, "simplify: %d -> %d faces (target %zu), relative error %.3g", m->nf, nf, target, (double)err);
     *out = o;
     goto done;
 nomem:
-    st = neuv_fail(NEUV_ERR_NOMEM, "out of memory simplifying %d faces", m->nf);
+    st = error_set(NEUV_ERR_NOMEM, "out of memory simplifying %d faces", m->nf);
 done:
     free(idx); free(dst); free(wedge_v); free(wedge_uv); free(fpos); free(vmap); free(uvmap);
     if (has_uv && map_ok) edge_map_free(&map);

@@ -14,22 +14,22 @@ static neuv_status subdivide_uv(const neuv_mesh *m, int *tri_uv_out, double **uv
 {
     size_t nc = (size_t)m->nf * 3;
     edge_map map;
-    if (edge_map_init(&map, nc / 2 + 1)) return neuv_fail(NEUV_ERR_NOMEM, "out of memory subdividing UVs");
+    if (edge_map_init(&map, nc / 2 + 1)) return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs");
     int *mid = malloc(sizeof(int) * (nc + 1));
-    if (!mid) { edge_map_free(&map); return neuv_fail(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
+    if (!mid) { edge_map_free(&map); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
     int count = m->nuv;
     for (size_t c = 0; c < nc; c++) {
         size_t f = c / 3;
         int a = m->tri_uv[c], b = m->tri_uv[3 * f + (c % 3 + 1) % 3];
         int lo = a < b ? a : b, hi = a < b ? b : a, inserted;
         int *slot = edge_map_slot(&map, lo, hi, count, &inserted);
-        if (!slot) { free(mid); edge_map_free(&map); return neuv_fail(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
+        if (!slot) { free(mid); edge_map_free(&map); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
         if (inserted) count++;
         mid[c] = *slot;
     }
     edge_map_free(&map);
     double *uv = malloc(sizeof(double) * 2 * (size_t)count);
-    if (!uv) { free(mid); return neuv_fail(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
+    if (!uv) { free(mid); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
     memcpy(uv, m->uv, sizeof(double) * 2 * (size_t)m->nuv);
     for (size_t c = 0; c < nc; c++) {
         size_t f = c / 3;
@@ -60,7 +60,7 @@ static neuv_status loop_vertex_points(const neuv_mesh *m, const edge_faces *ef, 
     char *fixed = calloc((size_t)nv, 1);
     if (!sum || !bsum || !n || !nb || !fixed) {
         free(sum); free(bsum); free(n); free(nb); free(fixed);
-        return neuv_fail(NEUV_ERR_NOMEM, "out of memory in Loop subdivision");
+        return error_set(NEUV_ERR_NOMEM, "out of memory in Loop subdivision");
     }
     for (int e = 0; e < ef->ne; e++) {
         int a = ef->edge_v[2 * e], b = ef->edge_v[2 * e + 1], k = edge_faces_count(ef, e);
@@ -98,18 +98,18 @@ static neuv_status subdivide_once(const neuv_mesh *m, subdivide_scheme scheme, n
 {
     *out = NULL;
     edge_faces ef;
-    if (edge_faces_build(&ef, m)) return neuv_fail(NEUV_ERR_NOMEM, "out of memory building the edge table");
+    if (edge_faces_build(&ef, m)) return error_set(NEUV_ERR_NOMEM, "out of memory building the edge table");
     for (size_t c = 0; c < (size_t)m->nf * 3; c++)
         if (ef.face_edge[c] < 0) {
             edge_faces_free(&ef);
-            return neuv_fail(NEUV_ERR_INPUT, "face %zu has a repeated vertex; clean the mesh before subdividing", c / 3);
+            return error_set(NEUV_ERR_INPUT, "face %zu has a repeated vertex; clean the mesh before subdividing", c / 3);
         }
     if ((double)m->nv + ef.ne > 2e9 || (double)m->nf * 4 > 2e9) {
         edge_faces_free(&ef);
-        return neuv_fail(NEUV_ERR_INPUT, "subdividing %d faces would exceed 2^31 elements", m->nf);
+        return error_set(NEUV_ERR_INPUT, "subdividing %d faces would exceed 2^31 elements", m->nf);
     }
     neuv_mesh *o = mesh_create(m->nv + ef.ne, m->nf * 4, 0);
-    if (!o) { edge_faces_free(&ef); return neuv_fail(NEUV_ERR_NOMEM, "out of memory subdividing %d faces", m->nf); }
+    if (!o) { edge_faces_free(&ef); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing %d faces", m->nf); }
     neuv_status st = NEUV_OK;
     if (scheme == SUBDIVIDE_LOOP) st = loop_vertex_points(m, &ef, o->pos);
     else memcpy(o->pos, m->pos, sizeof(double) * 3 * (size_t)m->nv);
@@ -140,7 +140,7 @@ static neuv_status subdivide_once(const neuv_mesh *m, subdivide_scheme scheme, n
     edge_faces_free(&ef);
     if (m->nuv > 0 && m->tri_uv) {
         o->tri_uv = malloc(sizeof(int) * 12 * (size_t)m->nf);
-        if (!o->tri_uv) { mesh_free(o); return neuv_fail(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
+        if (!o->tri_uv) { mesh_free(o); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
         if ((st = subdivide_uv(m, o->tri_uv, &o->uv, &o->nuv))) { mesh_free(o); return st; }
     }
     *out = o;
@@ -150,9 +150,9 @@ static neuv_status subdivide_once(const neuv_mesh *m, subdivide_scheme scheme, n
 neuv_status mesh_subdivide(const neuv_mesh *m, int rounds, subdivide_scheme scheme, neuv_mesh **out)
 {
     *out = NULL;
-    if (rounds < 0) return neuv_fail(NEUV_ERR_INPUT, "subdivision rounds must be >= 0, got %d", rounds);
+    if (rounds < 0) return error_set(NEUV_ERR_INPUT, "subdivision rounds must be >= 0, got %d", rounds);
     neuv_mesh *cur = mesh_clone(m);
-    if (!cur) return neuv_fail(NEUV_ERR_NOMEM, "out of memory copying the mesh");
+    if (!cur) return error_set(NEUV_ERR_NOMEM, "out of memory copying the mesh");
     for (int r = 0; r < rounds; r++) {
         neuv_mesh *next;
         neuv_status st = subdivide_once(cur, scheme, &next);

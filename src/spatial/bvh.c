@@ -119,7 +119,7 @@ static int sah_split(int *ids, int n, const double *cen, const double *flo, cons
 neuv_status bvh_build(bvh *b, const neuv_mesh *m)
 {
     memset(b, 0, sizeof *b);
-    if (m->nf <= 0) return neuv_fail(NEUV_ERR_INPUT, "cannot build a BVH over a mesh without faces");
+    if (m->nf <= 0) return error_set(NEUV_ERR_INPUT, "cannot build a BVH over a mesh without faces");
     int nf = m->nf;
     double *cen = malloc(sizeof(double) * 3 * (size_t)nf);
     double *lo = malloc(sizeof(double) * 3 * (size_t)nf), *hi = malloc(sizeof(double) * 3 * (size_t)nf);
@@ -129,7 +129,7 @@ neuv_status bvh_build(bvh *b, const neuv_mesh *m)
     b->corner = malloc(sizeof(double) * 9 * (size_t)nf);
     if (!cen || !lo || !hi || !stack || !b->nodes || !b->face || !b->corner) {
         free(cen); free(lo); free(hi); free(stack); bvh_free(b);
-        return neuv_fail(NEUV_ERR_NOMEM, "out of memory building a BVH over %d faces", nf);
+        return error_set(NEUV_ERR_NOMEM, "out of memory building a BVH over %d faces", nf);
     }
     b->nf = nf;
     for (int f = 0; f < nf; f++) {

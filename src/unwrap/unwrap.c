@@ -55,7 +55,7 @@ void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt,
     va_start(ap, fmt);
     vsnprintf(rep->what, sizeof rep->what, fmt, ap);
     va_end(ap);
-    neuv_log(NEUV_LOG_DEBUG, "repair: chart %d: %s", chart, rep->what);
+    log_message(NEUV_LOG_DEBUG, "repair: chart %d: %s", chart, rep->what);
 }
 
 void unwrap_piece_clear(chart_piece *p)
@@ -81,7 +81,7 @@ neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id
     neuv_status s = chart_submesh(m, face_chart, id, &p->sub, &p->vmap, &p->fmap);
     if (s != NEUV_OK) return s;
     p->uv = calloc((size_t)p->sub->nv * 2, sizeof(double));
-    return p->uv ? NEUV_OK : neuv_fail_nomem("chart UVs");
+    return p->uv ? NEUV_OK : error_nomem("chart UVs");
 }
 
 static const char *classic_name(neuv_method method)
@@ -165,13 +165,13 @@ static neuv_status refine_conformal_step(chart_piece *p)
 {
     size_t bytes = sizeof(double) * 2 * (size_t)p->sub->nv;
     double *solved = malloc(bytes);
-    if (!solved) return neuv_fail_nomem("chart UVs");
+    if (!solved) return error_nomem("chart UVs");
     neuv_status s = lscm_anchored(p->sub, p->uv, REFINE_ANCHOR_LAMBDA, solved);
     if (s == NEUV_ERR_NOMEM) { free(solved); return s; }
     if (s == NEUV_OK) {
         chart_uv_check chk;
         int ok = chart_uv_check_run(p->sub, solved, &chk);
-        if (ok < 0) s = neuv_fail_nomem("chart check");
+        if (ok < 0) s = error_nomem("chart check");
         else if (ok && !chk.mirrored) memcpy(p->uv, solved, bytes);
     }
     free(solved);
@@ -196,7 +196,7 @@ neuv_status unwrap_refine_piece(chart_piece *p, int steps, uv_refine_report *rep
 neuv_status unwrap_piece_lscm_qce(chart_piece *p)
 {
     double *uv = malloc(sizeof(double) * 2 * (size_t)p->sub->nv);
-    if (!uv) return neuv_fail_nomem("chart UVs");
+    if (!uv) return error_nomem("chart UVs");
     neuv_status s = lscm(p->sub, uv);
     if (s == NEUV_OK) p->lscm_qce = chart_qce_mean(p->sub, uv, NULL);
     free(uv);
@@ -210,7 +210,7 @@ neuv_status unwrap_keep_provenance(struct neuv_unwrap_result *r, const chart_pie
     r->chart_source = malloc(sizeof(int) * n);
     r->chart_net_qce = malloc(sizeof(double) * n);
     r->chart_lscm_qce = malloc(sizeof(double) * n);
-    if (!r->chart_source || !r->chart_net_qce || !r->chart_lscm_qce) return neuv_fail_nomem("chart provenance");
+    if (!r->chart_source || !r->chart_net_qce || !r->chart_lscm_qce) return error_nomem("chart provenance");
     r->neural_charts = 0;
     for (int c = 0; c < r->n_charts; c++) {
         r->chart_source[c] = (int)pieces[c].source;
@@ -230,17 +230,17 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
     neuv_status s = NEUV_OK;
     int splits = 0;
     for (int c = 0; c < r->n_charts; c++) {
-        if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = neuv_fail_nomem("charts"); break; }
+        if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = error_nomem("charts"); break; }
         chart_piece *p = &pieces[c];
         if ((s = unwrap_piece_build(m, r->face_chart, c, p)) != NEUV_OK) break;
-        neuv_progress("repair", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
+        log_progress("repair", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
         chart_uv_check chk;
         char why[160];
         if (corner_uv && (!p->from_split || p->net_split)) {
             int head = p->net_split ? p->net_head : c;
             piece_uv_from_corners(p, corner_uv);
             int ok = chart_uv_check_run(p->sub, p->uv, &chk);
-            if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
+            if (ok < 0) { s = error_nomem("chart check"); break; }
             p->net_qce = chart_qce_mean(p->sub, p->uv, NULL);
             if (ok && (s = unwrap_piece_lscm_qce(p)) != NEUV_OK) break;
             p->source = ok && r->opts.refine > 0 ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
@@ -267,7 +267,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                 unwrap_add_repair(r, c, "the networks' map crossed the chart's own boundary (%d crossings); split "
                                   "into %d charts, each checked under the same map", chk.boundary_crossings,
                                   r->n_charts - before + 1);
-                if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = neuv_fail_nomem("charts"); break; }
+                if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = error_nomem("charts"); break; }
                 for (int k = before; k <= r->n_charts; k++) {
                     chart_piece *q = &pieces[k < r->n_charts ? k : c];
                     q->from_split = q->net_split = 1;
@@ -288,12 +288,12 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
         else if (corner_uv) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
         else p->source = used == NEUV_METHOD_HARMONIC ? CHART_SOURCE_HARMONIC : CHART_SOURCE_LSCM;
         int ok = chart_uv_check_run(p->sub, p->uv, &chk);
-        if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
+        if (ok < 0) { s = error_nomem("chart check"); break; }
         if (used == NEUV_METHOD_LSCM) p->lscm_qce = chart_qce_mean(p->sub, p->uv, NULL);
         p->mirrored = chk.mirrored;
         if (ok || r->opts.allow_overlaps) continue;
         if (p->sub->nf < 2 || splits >= m->nf) {
-            s = neuv_fail(NEUV_ERR_INTERNAL, "chart %d cannot be flattened without folds", c);
+            s = error_set(NEUV_ERR_INTERNAL, "chart %d cannot be flattened without folds", c);
             break;
         }
         describe_failure(why, sizeof why, &chk);
@@ -303,7 +303,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
         splits++;
         unwrap_add_repair(r, c, "%s map folded (%s); split into %d charts and re-flattened",
                           classic_name(corner_uv ? NEUV_METHOD_LSCM : classic), why, r->n_charts - before + 1);
-        if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = neuv_fail_nomem("charts"); break; }
+        if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = error_nomem("charts"); break; }
         for (int k = before; k < r->n_charts; k++) pieces[k].from_split = 1;
         pieces[c].from_split = 1;
         pieces[c].net_split = 0; /* the classic method's pieces stay the classic method's */
@@ -320,7 +320,7 @@ neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_c
     for (int c = 0; c < n_charts; c++) nuv += pieces[c].sub->nv;
     double *uv = malloc(sizeof(double) * 2 * (size_t)nuv);
     int *tri_uv = malloc(sizeof(int) * 3 * (size_t)m->nf);
-    if (!uv || !tri_uv) { free(uv); free(tri_uv); return neuv_fail_nomem("UVs"); }
+    if (!uv || !tri_uv) { free(uv); free(tri_uv); return error_nomem("UVs"); }
     int base = 0;
     neuv_status s = NEUV_OK;
     for (int c = 0; c < n_charts && s == NEUV_OK; c++) {
@@ -330,7 +330,7 @@ neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_c
             for (int k = 0; k < 3; k++) {
                 int f = p->fmap[lf], lv = p->sub->tri[3 * lf + k];
                 if (p->vmap[lv] != m->tri[3 * f + k]) {
-                    s = neuv_fail(NEUV_ERR_INTERNAL, "chart %d: corner order differs from the mesh", c);
+                    s = error_set(NEUV_ERR_INTERNAL, "chart %d: corner order differs from the mesh", c);
                     break;
                 }
                 tri_uv[3 * f + k] = base + lv;
@@ -346,8 +346,8 @@ neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_c
 neuv_status unwrap_metrics(const neuv_mesh *m, uv_metrics *out)
 {
     neuv_mesh *welded = mesh_clone(m);
-    if (!welded) return neuv_fail_nomem("the metrics");
-    if (mesh_weld_positions(welded) < 0) { mesh_free(welded); return neuv_fail_nomem("the metrics"); }
+    if (!welded) return error_nomem("the metrics");
+    if (mesh_weld_positions(welded) < 0) { mesh_free(welded); return error_nomem("the metrics"); }
     neuv_status s = uv_metrics_compute(welded, out);
     mesh_free(welded);
     return s;
@@ -375,7 +375,7 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
         if (nq) r->chart_net_qce = nq;
         double *lq = realloc(r->chart_lscm_qce, sizeof(double) * (size_t)r->n_charts);
         if (lq) r->chart_lscm_qce = lq;
-        if (!src || !nq || !lq) { free(parent); return neuv_fail_nomem("chart provenance"); }
+        if (!src || !nq || !lq) { free(parent); return error_nomem("chart provenance"); }
         for (int c = before; c < r->n_charts; c++) {
             r->chart_source[c] = r->chart_source[parent[c]];
             r->chart_net_qce[c] = r->chart_net_qce[parent[c]];
@@ -387,7 +387,7 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
         if (net) r->chart_net = net;
         int *mir = realloc(r->chart_mirrored, sizeof(int) * (size_t)r->n_charts);
         if (mir) r->chart_mirrored = mir;
-        if (!net || !mir) { free(parent); return neuv_fail_nomem("the model"); }
+        if (!net || !mir) { free(parent); return error_nomem("the model"); }
         for (int c = before; c < r->n_charts; c++) {
             r->chart_net[c] = r->chart_net[parent[c]];
             r->chart_mirrored[c] = r->chart_mirrored[parent[c]];
@@ -408,18 +408,18 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     neuv_status s;
 
     neuv_mesh *m = mesh_clone(in);
-    if (!m) return neuv_fail_nomem("the mesh");
+    if (!m) return error_nomem("the mesh");
     r->mesh = m;
     r->input_vertices = in->nv;
     r->input_faces = in->nf;
     mesh_set_uv(m, 0, NULL, NULL);
     if ((s = mesh_clean(m, NULL, &r->clean)) != NEUV_OK) return s;
-    if (m->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
-    if (!(mesh_total_area(m) > 0)) return neuv_fail(NEUV_ERR_INPUT, "the mesh has zero area");
+    if (m->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
+    if (!(mesh_total_area(m) > 0)) return error_set(NEUV_ERR_INPUT, "the mesh has zero area");
     r->seconds[STAGE_CLEAN] = now_seconds() - t;
 
     t = now_seconds();
-    neuv_progress("operators", 0, NULL);
+    log_progress("operators", 0, NULL);
     operators ops;
     memset(&ops, 0, sizeof ops);
     operators_params op = operators_default_params();
@@ -429,7 +429,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
 
     t = now_seconds();
     r->face_chart = malloc(sizeof(int) * (size_t)m->nf);
-    if (!r->face_chart) { operators_free(&ops); return neuv_fail_nomem("charts"); }
+    if (!r->face_chart) { operators_free(&ops); return error_nomem("charts"); }
     patchnet_options po;
     patchnet_default_options(&po);
     if (o->preset == NEUV_PRESET_PAPER) patchnet_apply_preset(&po, "paper");
@@ -450,7 +450,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     } else if (keep_model) {
         r->patchnet = calloc(1, sizeof *r->patchnet);
         r->face_label = malloc(sizeof(int) * (size_t)m->nf);
-        if (!r->patchnet || !r->face_label) { operators_free(&ops); return neuv_fail_nomem("the model"); }
+        if (!r->patchnet || !r->face_label) { operators_free(&ops); return error_nomem("the model"); }
     }
     if (!category) {
         s = patchnet_segment_model(m, &ops, &po, r->face_chart, &r->n_charts, &features, &feature_dim, &prep,
@@ -470,7 +470,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     t = now_seconds();
     if (o->method == NEUV_METHOD_NEURAL) {
         corner_uv = malloc(sizeof(double) * 6 * (size_t)m->nf);
-        if (!corner_uv) { free(features); return neuv_fail_nomem("UVs"); }
+        if (!corner_uv) { free(features); return error_nomem("UVs"); }
         param_net_options pp;
         param_net_default_options(&pp, o->preset == NEUV_PRESET_PAPER ? PARAM_PRESET_PAPER : PARAM_PRESET_FAST);
         pp.seed = o->seed;
@@ -507,7 +507,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     if (s == NEUV_OK && keep_model) {
         r->chart_net = malloc(sizeof(int) * (size_t)r->n_charts);
         r->chart_mirrored = malloc(sizeof(int) * (size_t)r->n_charts);
-        if (!r->chart_net || !r->chart_mirrored) s = neuv_fail_nomem("the model");
+        if (!r->chart_net || !r->chart_mirrored) s = error_nomem("the model");
         for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) {
             r->chart_net[c] = pieces[c].net;
             r->chart_mirrored[c] = pieces[c].mirrored;
@@ -521,10 +521,10 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     if (s != NEUV_OK) return s;
 
     t = now_seconds();
-    neuv_progress("pack", 0, "%d charts", r->n_charts);
+    log_progress("pack", 0, "%d charts", r->n_charts);
     if ((s = split_for_packing(r, m)) != NEUV_OK) return s;
     r->transforms = calloc((size_t)r->n_charts, sizeof *r->transforms);
-    if (!r->transforms) return neuv_fail_nomem("chart transforms");
+    if (!r->transforms) return error_nomem("chart transforms");
     atlas_pack_options pk;
     atlas_pack_options_default(&pk);
     pk.resolution = o->resolution;
@@ -545,15 +545,15 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
                          neuv_unwrap_result **out)
 {
     *out = NULL;
-    if (!mesh || mesh->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
+    if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
     struct neuv_unwrap_result *r = calloc(1, sizeof *r);
-    if (!r) return neuv_fail_nomem("the result");
+    if (!r) return error_nomem("the result");
     if (opts) r->opts = *opts;
     else neuv_unwrap_options_default(&r->opts);
     if (r->opts.resolution < 64 || r->opts.resolution > 16384)
-        { free(r); return neuv_fail(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
+        { free(r); return error_set(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
     if (r->opts.padding < 0 || r->opts.padding > r->opts.resolution / 8)
-        { free(r); return neuv_fail(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
+        { free(r); return error_set(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
     if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;
     neuv_status s = run_pipeline(r, mesh, keep_model, NULL, 0);
@@ -566,11 +566,11 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
                                  int finetune, int shared_layer, neuv_unwrap_result **out)
 {
     *out = NULL;
-    if (!mesh || mesh->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
+    if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
     if (!category || !category->category || !category->patchnet || !category->param)
-        return neuv_fail(NEUV_ERR_INPUT, "not a category model");
+        return error_set(NEUV_ERR_INPUT, "not a category model");
     struct neuv_unwrap_result *r = calloc(1, sizeof *r);
-    if (!r) return neuv_fail_nomem("the result");
+    if (!r) return error_nomem("the result");
     neuv_unwrap_options_default(&r->opts);
     r->opts.method = NEUV_METHOD_NEURAL;
     r->opts.preset = category->preset;

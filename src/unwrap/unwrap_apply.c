@@ -54,7 +54,7 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
     double *vn = calloc(3 * (size_t)(m->nv > 0 ? m->nv : 1), sizeof(double));
     if (!pt || !d2 || !sf || !fn || !vn) {
         free(pt); free(d2); free(sf); free(fn); free(vn); bvh_free(&b);
-        return neuv_fail_nomem("chart transfer");
+        return error_nomem("chart transfer");
     }
     /* Face normals (area-weighted) and vertex normals: each point looks for
      * the closest source face on its own side of the surface. */
@@ -223,7 +223,7 @@ static neuv_status source_island_open(const unwrap_model *md, int mc, source_isl
     neuv_status s = chart_submesh(md->source, md->face_chart, mc, &is->sub, &is->vmap, &is->fmap);
     if (s) return s;
     is->uv = malloc(sizeof(double) * 2 * (size_t)is->sub->nv);
-    if (!is->uv) return neuv_fail_nomem("UV transfer");
+    if (!is->uv) return error_nomem("UV transfer");
     /* A chart is one island: one UV per vertex. */
     for (int f = 0; f < is->sub->nf; f++)
         for (int k = 0; k < 3; k++)
@@ -265,12 +265,12 @@ static neuv_status source_chart_uvs(const unwrap_model *md, int mc, const chart_
     int n = p->sub->nv;
     int *face = malloc(sizeof(int) * (size_t)n);
     double *bary = malloc(sizeof(double) * 3 * (size_t)n), *sd = NULL;
-    if (s == NEUV_OK && (!face || !bary)) s = neuv_fail_nomem("UV transfer");
+    if (s == NEUV_OK && (!face || !bary)) s = error_nomem("UV transfer");
     const neuv_mesh *ssub = is.sub;
     const double *suv = is.uv;
     if (s == NEUV_OK && delta) {
         sd = malloc(sizeof(double) * 2 * (size_t)ssub->nv);
-        if (!sd) s = neuv_fail_nomem("UV transfer");
+        if (!sd) s = error_nomem("UV transfer");
         else s = param_net_apply(md->param, md->chart_net[mc], ssub->pos, ssub->nv, sd);
         for (int v = 0; s == NEUV_OK && v < ssub->nv; v++) {
             double q[2] = {md->chart_mirrored[mc] ? -sd[2 * v] : sd[2 * v], sd[2 * v + 1]}, o[2];
@@ -340,7 +340,7 @@ static int settle_border_faces(const neuv_mesh *m, const unwrap_model *md, const
     *st = NEUV_OK;
     source_island *is = calloc((size_t)md->n_charts, sizeof *is);
     unsigned char *border = malloc((size_t)(nf > 0 ? nf : 1));
-    if (!is || !border) { free(is); free(border); *st = neuv_fail_nomem("charts"); return -1; }
+    if (!is || !border) { free(is); free(border); *st = error_nomem("charts"); return -1; }
     for (int round = 0; round < 3 && *st == NEUV_OK; round++) {
         int changed = 0;
         for (int f = 0; f < nf; f++) {
@@ -524,7 +524,7 @@ static neuv_status faces_by_chart(const struct neuv_unwrap_result *r, int **orde
     int *order = malloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
     int *first = calloc((size_t)r->n_charts + 1, sizeof(int));
     int *fill = calloc((size_t)r->n_charts + 1, sizeof(int));
-    if (!order || !first || !fill) { free(order); free(first); free(fill); return neuv_fail_nomem("overlap test"); }
+    if (!order || !first || !fill) { free(order); free(first); free(fill); return error_nomem("overlap test"); }
     for (int f = 0; f < nf; f++) first[r->face_chart[f] + 1]++;
     for (int c = 0; c < r->n_charts; c++) first[c + 1] += first[c];
     for (int f = 0; f < nf; f++) order[first[r->face_chart[f]] + fill[r->face_chart[f]]++] = f;
@@ -568,7 +568,7 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
     for (int c = 0; c < nc; c++) if (pieces[c].sub->nv > maxv) maxv = pieces[c].sub->nv;
     double *keep = malloc(sizeof(double) * 2 * (size_t)maxv), *scratch = malloc(sizeof(double) * 2 * (size_t)maxv);
     int *pulled = calloc((size_t)(nc > 0 ? nc : 1), sizeof(int));
-    if (!hot || !keep || !scratch || !pulled) s = neuv_fail_nomem("overlap test");
+    if (!hot || !keep || !scratch || !pulled) s = error_nomem("overlap test");
     /* How far past its island a corner may stay, per round: half the gap the
      * packing left between islands, then none. */
     const double reach[2] = {0.5 * r->opts.padding / (r->opts.resolution > 0 ? r->opts.resolution : 1), 0.0};
@@ -604,7 +604,7 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
             chart_uv_check chk;
             int ok = uv_usable(p, p->uv, scratch, &chk);
             if (ok == 0) ok = relax_folds(p, scratch);
-            if (ok < 0) { s = neuv_fail_nomem("chart check"); break; }
+            if (ok < 0) { s = error_nomem("chart check"); break; }
             if (ok) {
                 memcpy(uv, p->uv, sizeof(double) * 2 * (size_t)n);
                 pulled[c] += moved;
@@ -634,7 +634,7 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
     neuv_mesh *m = r->mesh;
     int *shrunk = calloc((size_t)r->n_charts + 1, sizeof(int));
     unsigned char *now = malloc((size_t)r->n_charts + 1);
-    if (!shrunk || !now) { free(shrunk); free(now); return neuv_fail_nomem("overlap test"); }
+    if (!shrunk || !now) { free(shrunk); free(now); return error_nomem("overlap test"); }
     neuv_status s = NEUV_OK;
     for (int round = 0; round < MAX_SHRINK_ROUNDS; round++) {
         int *pairs = NULL, np = 0;
@@ -715,7 +715,7 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
     int *lt = malloc(sizeof(int) * 3 * (size_t)maxf);
     occupancy occ;
     int occ_ok = occupancy_init(&occ, R, pad) == 0;
-    if (!move || !q || !lt || !occ_ok) s = neuv_fail_nomem("chart placement");
+    if (!move || !q || !lt || !occ_ok) s = error_nomem("chart placement");
     for (int k = 0; s == NEUV_OK && k < np; k++) {
         int a = pairs[2 * k], b = pairs[2 * k + 1];
         if (!move[a] && !move[b]) move[span_area(&span[a]) <= span_area(&span[b]) ? a : b] = 1;
@@ -727,12 +727,12 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
             footprint fp, dil;
             memset(&dil, 0, sizeof dil);
             int x0, y0;
-            if (chart_footprint(m, &span[c], order, first, c, R, q, lt, &fp, &x0, &y0)) { s = neuv_fail_nomem("chart placement"); break; }
+            if (chart_footprint(m, &span[c], order, first, c, R, q, lt, &fp, &x0, &y0)) { s = error_nomem("chart placement"); break; }
             int x = x0, y = y0, found = 1;
             double scale = 1;
             for (int tries = 0; pass == 1 && tries < 8; tries++) {
                 footprint_spans fs;
-                if (footprint_to_spans(&fp, &fs)) { s = neuv_fail_nomem("chart placement"); break; }
+                if (footprint_to_spans(&fp, &fs)) { s = error_nomem("chart placement"); break; }
                 found = occupancy_find(&occ, &fs, R, &x, &y);
                 footprint_spans_free(&fs);
                 if (found) break;
@@ -749,7 +749,7 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
                 span_bounds(m, &span[c]);
                 footprint_free(&fp);
                 if (chart_footprint(m, &span[c], order, first, c, R, q, lt, &fp, &x0, &y0)) {
-                    s = neuv_fail_nomem("chart placement");
+                    s = error_nomem("chart placement");
                     memset(&fp, 0, sizeof fp);
                     break;
                 }
@@ -842,7 +842,7 @@ static neuv_status check_inference(struct neuv_unwrap_result *r, const unwrap_mo
     neuv_status s = operators_get(r->mesh, &op, use_cache, &ops, NULL, &hit);
     if (s) return s;
     int *label = malloc(sizeof(int) * (size_t)r->mesh->nf);
-    if (!label) { operators_free(&ops); return neuv_fail_nomem("labels"); }
+    if (!label) { operators_free(&ops); return error_nomem("labels"); }
     s = patchnet_infer(md->patchnet, r->mesh, &ops, label);
     operators_free(&ops);
     if (s == NEUV_OK) {
@@ -866,19 +866,19 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     double t = now_seconds(), t_start = t;
     neuv_status s;
     neuv_mesh *m = mesh_clone(in);
-    if (!m) return neuv_fail_nomem("the mesh");
+    if (!m) return error_nomem("the mesh");
     r->mesh = m;
     r->input_vertices = in->nv;
     r->input_faces = in->nf;
     mesh_set_uv(m, 0, NULL, NULL);
     if ((s = mesh_clean(m, NULL, &r->clean)) != NEUV_OK) return s;
-    if (m->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
+    if (m->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
     /* Vertex refinement costs ~0.5 µs per face and step (spot: 400 steps in
      * 1.1 s) and moves a vertex a share of an edge per step, so on a very fine
      * mesh it is slow and does little: such meshes keep the networks' map. */
     int refine = md->refine;
     if (refine > 0 && m->nf > REFINE_MAX_FACES) {
-        neuv_log(NEUV_LOG_INFO, "vertex refinement skipped: %d faces (more than %d)", m->nf, REFINE_MAX_FACES);
+        log_message(NEUV_LOG_INFO, "vertex refinement skipped: %d faces (more than %d)", m->nf, REFINE_MAX_FACES);
         refine = 0;
     }
     r->seconds[STAGE_CLEAN] = now_seconds() - t;
@@ -886,14 +886,14 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
 
     /* Charts. */
     t = now_seconds();
-    neuv_progress("patches", 0, "charts from the model's source surface");
+    log_progress("patches", 0, "charts from the model's source surface");
     int *label = malloc(sizeof(int) * (size_t)m->nf);
     int *src_face = malloc(sizeof(int) * (size_t)m->nf);
     int *vertex_chart = malloc(sizeof(int) * (size_t)m->nv);
     r->face_chart = malloc(sizeof(int) * (size_t)m->nf);
     if (!label || !src_face || !vertex_chart || !r->face_chart) {
         free(label); free(src_face); free(vertex_chart);
-        return neuv_fail_nomem("charts");
+        return error_nomem("charts");
     }
     double dist = 0;
     s = transfer_charts(m, md, label, src_face, vertex_chart, &dist);
@@ -902,11 +902,11 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     if (s == NEUV_OK) s = face_graph_build(m, &g);
     if (s == NEUV_OK) {
         int merged = merge_fragments(m, &g, label, md->n_charts);
-        if (merged < 0) s = neuv_fail_nomem("charts");
+        if (merged < 0) s = error_nomem("charts");
         int settled = s == NEUV_OK && !o->refine_on_mesh ? settle_border_faces(m, md, &g, label, &s) : 0;
         if (s == NEUV_OK && settled > 0) {
             int again = merge_fragments(m, &g, label, md->n_charts);
-            if (again < 0) s = neuv_fail_nomem("charts");
+            if (again < 0) s = error_nomem("charts");
             else merged += again;
         }
         face_graph_free(&g);
@@ -916,7 +916,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     /* Compact ids: source charts that got no face are dropped. */
     int *model_chart = malloc(sizeof(int) * (size_t)md->n_charts);
     int *new_id = malloc(sizeof(int) * (size_t)md->n_charts);
-    if (s == NEUV_OK && (!model_chart || !new_id)) s = neuv_fail_nomem("charts");
+    if (s == NEUV_OK && (!model_chart || !new_id)) s = error_nomem("charts");
     if (s == NEUV_OK) {
         for (int c = 0; c < md->n_charts; c++) new_id[c] = -1;
         for (int f = 0; f < m->nf; f++) new_id[label[f]] = 0;
@@ -945,7 +945,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     if (mc_grown) model_chart = mc_grown;
     if (!pieces || !repaired || !mc_grown || !anchor) {
         free(pieces); free(repaired); free(model_chart); free(anchor); free(vertex_chart);
-        return neuv_fail_nomem("charts");
+        return error_nomem("charts");
     }
     /* The source's refinement is carried over (its difference to the networks'
      * map, interpolated) unless the options ask to refine on this mesh. */
@@ -962,7 +962,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             if (nm) model_chart = nm;
             double **na = realloc(anchor, sizeof *na * (size_t)nc);
             if (na) { memset(na + cap, 0, sizeof *na * (size_t)(nc - cap)); anchor = na; }
-            if (!np || !nr || !nm || !na) { s = neuv_fail_nomem("charts"); break; }
+            if (!np || !nr || !nm || !na) { s = error_nomem("charts"); break; }
             cap = nc;
         }
         chart_piece *p = &pieces[c];
@@ -970,7 +970,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         free(anchor[c]);
         anchor[c] = NULL;
         if ((s = unwrap_piece_build(m, r->face_chart, c, p))) break;
-        neuv_progress("param", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
+        log_progress("param", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
         int mc = model_chart[c], net = md->chart_net[mc], n = p->sub->nv, relaxed = 0;
         double *target = malloc(sizeof(double) * 2 * (size_t)n), *scratch = malloc(sizeof(double) * 2 * (size_t)n);
         double *ext = malloc(sizeof(double) * 2 * (size_t)n), *delta = malloc(sizeof(double) * 2 * (size_t)n);
@@ -978,7 +978,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         anchor[c] = malloc(sizeof(double) * 2 * (size_t)n);
         if (!target || !scratch || !ext || !delta || !closest || !anchor[c]) {
             free(target); free(scratch); free(ext); free(delta); free(closest);
-            s = neuv_fail_nomem("chart UVs");
+            s = error_nomem("chart UVs");
             break;
         }
         s = source_chart_uvs(md, mc, p, ext, anchor[c], net >= 0 && carry_refinement ? delta : NULL, closest);
@@ -1007,7 +1007,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             if (s == NEUV_OK && refine > 0 && !carry_refinement) { /* refined on this mesh, where usable */
                 chart_uv_check chk0;
                 int ok0 = uv_usable(p, p->uv, scratch, &chk0);
-                if (ok0 < 0) s = neuv_fail_nomem("chart check");
+                if (ok0 < 0) s = error_nomem("chart check");
                 else if (ok0) {
                     uv_refine_report rr;
                     s = unwrap_refine_piece(p, refine, &rr);
@@ -1052,7 +1052,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             neuv_status ls = lscm(p->sub, p->uv);
             chart_uv_check chk0;
             int ok0 = ls == NEUV_OK ? chart_uv_check_run(p->sub, p->uv, &chk0) : 0;
-            if (ls == NEUV_ERR_NOMEM || ok0 < 0) s = neuv_fail_nomem("LSCM baseline");
+            if (ls == NEUV_ERR_NOMEM || ok0 < 0) s = error_nomem("LSCM baseline");
             else if (ok0) { align_similarity(p->uv, target, n); baseline = 1; }
             else memcpy(p->uv, target, sizeof(double) * 2 * (size_t)n);
         }
@@ -1101,14 +1101,14 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
                                   net >= 0 && !deviates ? "network" : "transferred", why, how);
             } else if (ok == 0) {
                 if (p->sub->nf < 2 || splits >= m->nf) {
-                    s = neuv_fail(NEUV_ERR_INTERNAL, "chart %d cannot be flattened without folds", c);
+                    s = error_set(NEUV_ERR_INTERNAL, "chart %d cannot be flattened without folds", c);
                 } else {
                     int before = r->n_charts;
                     s = charts_split(m, r->face_chart, &r->n_charts, c);
                     if (s == NEUV_OK && r->n_charts > cap) {
                         int *nm = realloc(model_chart, sizeof(int) * (size_t)r->n_charts);
                         if (nm) model_chart = nm;
-                        else s = neuv_fail_nomem("charts");
+                        else s = error_nomem("charts");
                     }
                     for (int k = before; s == NEUV_OK && k < r->n_charts; k++) model_chart[k] = mc;
                     splits++;
@@ -1121,7 +1121,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             }
         }
         free(ext);
-        if (ok < 0) s = neuv_fail_nomem("chart check");
+        if (ok < 0) s = error_nomem("chart check");
         if (baseline && !relaxed && !repaired[c]) p->source = CHART_SOURCE_LSCM;
         else if (repaired[c]) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
         else if (net < 0 || from_source || deviates) p->source = CHART_SOURCE_TRANSFERRED;
@@ -1136,7 +1136,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     chart_span *span = s == NEUV_OK ? calloc((size_t)r->n_charts, sizeof *span) : NULL;
-    if (s == NEUV_OK && !span) s = neuv_fail_nomem("charts");
+    if (s == NEUV_OK && !span) s = error_nomem("charts");
     for (int c = 0, base = 0; s == NEUV_OK && c < r->n_charts; c++) {
         span[c].first = base;
         span[c].count = pieces[c].sub->nv;
@@ -1151,7 +1151,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
      * chart where the source put it. */
     t = now_seconds();
     r->transforms = calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *r->transforms);
-    if (s == NEUV_OK && !r->transforms) s = neuv_fail_nomem("chart transforms");
+    if (s == NEUV_OK && !r->transforms) s = error_nomem("chart transforms");
     for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->transforms[c] = md->xf[model_chart[c]];
     /* On a simplified copy's model the copy's layout does not matter, and
      * pulling corners flattens border faces (camelhead: qce_mean 1.020 ->
@@ -1216,11 +1216,11 @@ neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *md, const un
                          neuv_unwrap_result **out)
 {
     *out = NULL;
-    if (!mesh || mesh->nf == 0) return neuv_fail(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
+    if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
     unwrap_apply_options def = {0, 1, 0, 0, 0};
     if (!o) o = &def;
     struct neuv_unwrap_result *r = calloc(1, sizeof *r);
-    if (!r) return neuv_fail_nomem("the result");
+    if (!r) return error_nomem("the result");
     opts_from_model(&r->opts, md);
     r->opts.threads = o->threads;
     r->opts.use_cache = o->use_cache;
@@ -1246,15 +1246,15 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
         return s;
     }
     double t = now_seconds();
-    neuv_progress("simplify", 0, "%d faces to about %d", mesh->nf, train_faces);
+    log_progress("simplify", 0, "%d faces to about %d", mesh->nf, train_faces);
     neuv_mesh *copy = mesh_clone(mesh);
-    if (!copy) return neuv_fail_nomem("the mesh");
+    if (!copy) return error_nomem("the mesh");
     mesh_set_uv(copy, 0, NULL, NULL);
     neuv_mesh *small = NULL;
     neuv_status s = mesh_simplify(copy, (double)train_faces / mesh->nf, &small);
     mesh_free(copy);
     if (s) return s;
-    neuv_log(NEUV_LOG_INFO, "training on a simplified copy: %d of %d faces", small->nf, mesh->nf);
+    log_message(NEUV_LOG_INFO, "training on a simplified copy: %d of %d faces", small->nf, mesh->nf);
     neuv_unwrap_result *tr = NULL;
     s = unwrap_train(small, opts, 1, &tr);
     int small_faces = small->nf;

@@ -48,7 +48,7 @@ static neuv_status join_shapes(const category_shape *sh, int n, neuv_mesh **join
     neuv_mesh *m = mesh_create(nv, nf, 0);
     int *fc = malloc(sizeof(int) * (size_t)nf);
     float *ft = malloc(sizeof(float) * (size_t)nv * (size_t)dim);
-    if (!m || !fc || !ft) { mesh_free(m); free(fc); free(ft); return neuv_fail_nomem("the joined shapes"); }
+    if (!m || !fc || !ft) { mesh_free(m); free(fc); free(ft); return error_nomem("the joined shapes"); }
     int vb = 0, fb = 0, cb = 0;
     for (int i = 0; i < n; i++) {
         const neuv_mesh *s = sh[i].mesh;
@@ -72,12 +72,12 @@ static neuv_status join_shapes(const category_shape *sh, int n, neuv_mesh **join
 static neuv_status prepare_shape(const neuv_mesh *in, int index, int use_cache, category_shape *c)
 {
     c->mesh = mesh_clone(in);
-    if (!c->mesh) return neuv_fail_nomem("the shapes");
+    if (!c->mesh) return error_nomem("the shapes");
     mesh_set_uv(c->mesh, 0, NULL, NULL);
     neuv_status s = mesh_clean(c->mesh, NULL, NULL);
     if (s != NEUV_OK) return s;
     if (c->mesh->nf == 0 || !(mesh_total_area(c->mesh) > 0))
-        return neuv_fail(NEUV_ERR_INPUT, "shape %d has no faces of non-zero area after cleaning", index + 1);
+        return error_set(NEUV_ERR_INPUT, "shape %d has no faces of non-zero area after cleaning", index + 1);
     operators_params op = operators_default_params();
     return operators_get(c->mesh, &op, use_cache, &c->ops, NULL, NULL);
 }
@@ -92,10 +92,10 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     neuv_unwrap_options o;
     if (opts) o = *opts;
     else neuv_unwrap_options_default(&o);
-    if (n < 1 || !meshes) return neuv_fail(NEUV_ERR_INPUT, "a category model needs at least one shape");
+    if (n < 1 || !meshes) return error_set(NEUV_ERR_INPUT, "a category model needs at least one shape");
     if (o.method != NEUV_METHOD_NEURAL)
-        return neuv_fail(NEUV_ERR_INPUT, "a category model is made of networks: the method must be neural");
-    if (patch_iters < 0) return neuv_fail(NEUV_ERR_INPUT, "PatchNet steps must be positive");
+        return error_set(NEUV_ERR_INPUT, "a category model is made of networks: the method must be neural");
+    if (patch_iters < 0) return error_set(NEUV_ERR_INPUT, "PatchNet steps must be positive");
     if (o.threads > 0) nn_set_threads(o.threads);
     double t_start = now_seconds(), t = t_start;
     rep->shapes = n;
@@ -109,10 +109,10 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     float *joined_features = NULL;
     double *corner_uv = NULL;
     neuv_status s = NEUV_OK;
-    if (!sh || !md || !ms || !os) { s = neuv_fail_nomem("the shapes"); goto done; }
+    if (!sh || !md || !ms || !os) { s = error_nomem("the shapes"); goto done; }
     for (int i = 0; i < n && s == NEUV_OK; i++) {
-        neuv_progress("operators", (double)i / n, "shape %d of %d", i + 1, n);
-        if (!meshes[i] || meshes[i]->nf == 0) s = neuv_fail(NEUV_ERR_INPUT, "shape %d has no faces", i + 1);
+        log_progress("operators", (double)i / n, "shape %d of %d", i + 1, n);
+        if (!meshes[i] || meshes[i]->nf == 0) s = error_set(NEUV_ERR_INPUT, "shape %d has no faces", i + 1);
         else s = prepare_shape(meshes[i], i, o.use_cache, &sh[i]);
         if (s == NEUV_OK) { ms[i] = sh[i].mesh; os[i] = &sh[i].ops; rep->faces += sh[i].mesh->nf; }
     }
@@ -130,7 +130,7 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     po.iters = patch_iters > 0 ? patch_iters : category_default_patch_iters(n);
     int k = o.charts > 0 ? o.charts : po.initial_charts;
     md->patchnet = calloc(1, sizeof *md->patchnet);
-    if (!md->patchnet) { s = neuv_fail_nomem("the model"); goto done; }
+    if (!md->patchnet) { s = error_nomem("the model"); goto done; }
     if ((s = patchnet_model_create_for_mesh(md->patchnet, &po, sh[0].mesh, &sh[0].ops, k)) != NEUV_OK) goto done;
     patchnet_report prep;
     memset(&prep, 0, sizeof prep);
@@ -143,9 +143,9 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     /* Each shape's charts and features, as an unseen shape will get them. */
     t = now_seconds();
     for (int i = 0; i < n && s == NEUV_OK; i++) {
-        neuv_progress("charts", (double)i / n, "shape %d of %d", i + 1, n);
+        log_progress("charts", (double)i / n, "shape %d of %d", i + 1, n);
         sh[i].face_chart = malloc(sizeof(int) * (size_t)sh[i].mesh->nf);
-        if (!sh[i].face_chart) { s = neuv_fail_nomem("charts"); break; }
+        if (!sh[i].face_chart) { s = error_nomem("charts"); break; }
         s = patchnet_charts_from_model(md->patchnet, sh[i].mesh, &sh[i].ops, &po, sh[i].face_chart, &sh[i].n_charts,
                                        &sh[i].features, &sh[i].feature_dim, NULL);
         operators_free(&sh[i].ops);
@@ -158,7 +158,7 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     t = now_seconds();
     if ((s = join_shapes(sh, n, &joined, &joined_chart, &joined_charts, &joined_features)) != NEUV_OK) goto done;
     corner_uv = malloc(sizeof(double) * 6 * (size_t)joined->nf);
-    if (!corner_uv) { s = neuv_fail_nomem("UVs"); goto done; }
+    if (!corner_uv) { s = error_nomem("UVs"); goto done; }
     param_net_options pp;
     param_net_default_options(&pp, o.preset == NEUV_PRESET_PAPER ? PARAM_PRESET_PAPER : PARAM_PRESET_FAST);
     pp.seed = o.seed;

@@ -36,11 +36,11 @@ neuv_status unwrap_model_from_result(struct neuv_unwrap_result *r, unwrap_model 
 {
     *out = NULL;
     if (!r->chart_net || !r->transforms)
-        return neuv_fail(NEUV_ERR_INPUT, "this unwrap kept no model to save");
+        return error_set(NEUV_ERR_INPUT, "this unwrap kept no model to save");
     if (r->mesh->nv >= MAX_EXACT_INT || r->mesh->nuv >= MAX_EXACT_INT)
-        return neuv_fail(NEUV_ERR_INPUT, "the mesh is too large to save as a model (%d vertices)", r->mesh->nv);
+        return error_set(NEUV_ERR_INPUT, "the mesh is too large to save as a model (%d vertices)", r->mesh->nv);
     unwrap_model *m = calloc(1, sizeof *m);
-    if (!m) return neuv_fail_nomem("the model");
+    if (!m) return error_nomem("the model");
     m->method = r->opts.method;
     m->preset = r->opts.preset;
     m->seed = r->opts.seed;
@@ -56,7 +56,7 @@ neuv_status unwrap_model_from_result(struct neuv_unwrap_result *r, unwrap_model 
     m->chart_mirrored = malloc(sizeof(int) * (size_t)nc);
     if (!m->source || !m->face_chart || !m->xf || !m->chart_net || !m->chart_mirrored) {
         unwrap_model_free(m);
-        return neuv_fail_nomem("the model");
+        return error_nomem("the model");
     }
     memcpy(m->face_chart, r->face_chart, sizeof(int) * (size_t)nf);
     memcpy(m->xf, r->transforms, sizeof *m->xf * (size_t)nc);
@@ -265,10 +265,10 @@ neuv_status unwrap_model_save(const unwrap_model *m, const char *path)
     if (m->patchnet && !bad) bad |= push_params(&l, &m->patchnet->params);
     char *header = bad ? NULL : header_json(m);
     neuv_status st;
-    if (bad || !header) st = neuv_fail_nomem("the model");
+    if (bad || !header) st = error_nomem("the model");
     else {
         nn_tensor **tp = malloc(sizeof *tp * (size_t)l.n);
-        if (!tp) st = neuv_fail_nomem("the model");
+        if (!tp) st = error_nomem("the model");
         else {
             for (int i = 0; i < l.n; i++) tp[i] = &l.t[i];
             st = nn_checkpoint_save(path, header, tp, l.name, l.n);
@@ -300,11 +300,11 @@ static const char *header_value(const char *json, const char *key)
 static neuv_status header_int(const char *json, const char *key, long long lo, long long hi, long long *out)
 {
     const char *p = header_value(json, key);
-    if (!p) return neuv_fail(NEUV_ERR_INPUT, "model header has no \"%s\"", key);
+    if (!p) return error_set(NEUV_ERR_INPUT, "model header has no \"%s\"", key);
     char *end;
     long long v = strtoll(p, &end, 10);
     if (end == p || (*end != ',' && *end != '}') || v < lo || v > hi)
-        return neuv_fail(NEUV_ERR_INPUT, "model header: \"%s\" must be an integer in %lld..%lld", key, lo, hi);
+        return error_set(NEUV_ERR_INPUT, "model header: \"%s\" must be an integer in %lld..%lld", key, lo, hi);
     *out = v;
     return NEUV_OK;
 }
@@ -323,9 +323,9 @@ static neuv_status want_tensor(const nn_checkpoint *c, const char *name, int row
                                const nn_checkpoint_tensor **out)
 {
     const nn_checkpoint_tensor *t = nn_checkpoint_find(c, name);
-    if (!t) return neuv_fail(NEUV_ERR_INPUT, "model has no tensor '%s'", name);
+    if (!t) return error_set(NEUV_ERR_INPUT, "model has no tensor '%s'", name);
     if (t->rows != rows || t->cols != cols)
-        return neuv_fail(NEUV_ERR_INPUT, "model tensor '%s' is %d by %d, expected %d by %d", name, t->rows, t->cols,
+        return error_set(NEUV_ERR_INPUT, "model tensor '%s' is %d by %d, expected %d by %d", name, t->rows, t->cols,
                          rows, cols);
     *out = t;
     return NEUV_OK;
@@ -338,7 +338,7 @@ static neuv_status read_doubles(const nn_checkpoint *c, const char *name, int ro
     if (s) return s;
     memcpy(out, t->data, sizeof(double) * (size_t)rows * (size_t)cols);
     for (size_t i = 0; i < (size_t)rows * (size_t)cols; i++)
-        if (!isfinite(out[i])) return neuv_fail(NEUV_ERR_INPUT, "model tensor '%s' holds a non-finite value", name);
+        if (!isfinite(out[i])) return error_set(NEUV_ERR_INPUT, "model tensor '%s' holds a non-finite value", name);
     return NEUV_OK;
 }
 
@@ -351,7 +351,7 @@ static neuv_status read_ints(const nn_checkpoint *c, const char *name, int rows,
     for (size_t i = 0; i < (size_t)rows * (size_t)cols; i++) {
         float v = t->data[i];
         if (!(v >= (float)lo && v <= (float)hi) || v != floorf(v))
-            return neuv_fail(NEUV_ERR_INPUT, "model tensor '%s' entry %zu is %g, expected an integer in %d..%d", name,
+            return error_set(NEUV_ERR_INPUT, "model tensor '%s' entry %zu is %g, expected an integer in %d..%d", name,
                              i, (double)v, lo, hi);
         out[i] = (int)v;
     }
@@ -365,7 +365,7 @@ static neuv_status check_params(const nn_checkpoint *c, nn_params *ps)
     for (int i = 0; i < ps->n; i++)
         for (long k = 0; k < (long)ps->t[i]->rows * ps->t[i]->cols; k++)
             if (!isfinite(ps->t[i]->data[k]))
-                return neuv_fail(NEUV_ERR_INPUT, "model weight '%s' holds a non-finite value", ps->t[i]->name);
+                return error_set(NEUV_ERR_INPUT, "model weight '%s' holds a non-finite value", ps->t[i]->name);
     return NEUV_OK;
 }
 
@@ -376,11 +376,11 @@ static neuv_status load_psi_norm(const nn_checkpoint *c, const char *h, int requ
     long long has = 0;
     neuv_status s;
     if (header_value(h, "param_psi_norm") && (s = header_int(h, "param_psi_norm", 0, 1, &has))) return s;
-    if (!has) return required ? neuv_fail(NEUV_ERR_INPUT, "category model has no psi standardization") : NEUV_OK;
+    if (!has) return required ? error_set(NEUV_ERR_INPUT, "category model has no psi standardization") : NEUV_OK;
     p->psi_shift = malloc(sizeof(double) * (size_t)p->psi_dim);
     p->psi_mul = malloc(sizeof(double) * (size_t)p->psi_dim);
     double *norm = malloc(sizeof(double) * 2 * (size_t)p->psi_dim);
-    if (!p->psi_shift || !p->psi_mul || !norm) { free(norm); return neuv_fail_nomem("the model"); }
+    if (!p->psi_shift || !p->psi_mul || !norm) { free(norm); return error_nomem("the model"); }
     s = read_doubles(c, "param.psi_norm", 2, p->psi_dim, norm);
     if (s == NEUV_OK) {
         memcpy(p->psi_shift, norm, sizeof(double) * (size_t)p->psi_dim);
@@ -408,9 +408,9 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     char *end;
     double slope = sv ? strtod(sv, &end) : NAN;
     if (!sv || end == sv || !(slope >= 0 && slope < 1))
-        return neuv_fail(NEUV_ERR_INPUT, "model header: \"param_slope\" must be a number in [0, 1)");
+        return error_set(NEUV_ERR_INPUT, "model header: \"param_slope\" must be a number in [0, 1)");
     param_net_model *p = calloc(1, sizeof *p);
-    if (!p) return neuv_fail_nomem("the model");
+    if (!p) return error_nomem("the model");
     m->param = p;
     nn_params_init(&p->params);
     int n = (int)nch;
@@ -425,7 +425,7 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     double *frame = malloc(sizeof(double) * 13 * (size_t)n + 1);
     if ((n > 0 && (!p->psi || !p->center || !p->scale || !p->rot || !p->mirror)) || !frame) {
         free(frame);
-        return neuv_fail_nomem("the model");
+        return error_nomem("the model");
     }
     rng r;
     rng_seed(&r, 1); /* the initial values are overwritten by the file's */
@@ -440,20 +440,20 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     const nn_checkpoint_tensor *t;
     if (!s && gain) {
         p->uv_gain = malloc(sizeof(double) * (size_t)n);
-        if (!p->uv_gain) s = neuv_fail_nomem("the model");
+        if (!p->uv_gain) s = error_nomem("the model");
         else s = read_doubles(c, "param.uv_gain", n, 1, p->uv_gain);
         for (int i = 0; !s && i < n; i++)
             if (!(p->uv_gain[i] > 0) || !isfinite(p->uv_gain[i]))
-                s = neuv_fail(NEUV_ERR_INPUT, "model chart %d has a UV scale that is not a positive number", i);
+                s = error_set(NEUV_ERR_INPUT, "model chart %d has a UV scale that is not a positive number", i);
     }
     if (!s && heads) {
         int hs = param_head_size(&p->f);
         s = want_tensor(c, "param.heads", n, hs, &t);
         if (!s) p->heads = malloc(sizeof(float) * (size_t)n * hs);
-        if (!s && !p->heads) s = neuv_fail_nomem("the model");
+        if (!s && !p->heads) s = error_nomem("the model");
         if (!s) memcpy(p->heads, t->data, sizeof(float) * (size_t)n * hs);
         for (long i = 0; !s && i < (long)n * hs; i++)
-            if (!isfinite(p->heads[i])) s = neuv_fail(NEUV_ERR_INPUT, "model tensor \"param.heads\" holds a non-finite value");
+            if (!isfinite(p->heads[i])) s = error_set(NEUV_ERR_INPUT, "model tensor \"param.heads\" holds a non-finite value");
     }
     if (!s) s = want_tensor(c, "param.psi", n, (int)psi, &t);
     if (!s) {
@@ -462,7 +462,7 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
             memcpy(p->center + 3 * c2, frame + 13 * c2, 3 * sizeof(double));
             p->scale[c2] = frame[13 * c2 + 3];
             memcpy(p->rot + 9 * c2, frame + 13 * c2 + 4, 9 * sizeof(double));
-            if (!(p->scale[c2] > 0)) s = neuv_fail(NEUV_ERR_INPUT, "model chart frame %d has a non-positive scale", c2);
+            if (!(p->scale[c2] > 0)) s = error_set(NEUV_ERR_INPUT, "model chart frame %d has a non-positive scale", c2);
         }
     }
     free(frame);
@@ -483,13 +483,13 @@ static neuv_status load_patchnet(const nn_checkpoint *c, const char *h, unwrap_m
     patchnet_default_options(&o);
     if (header_string_is(h, "patchnet_features", "xyz")) o.features = DIFFUSION_NET_XYZ;
     else if (header_string_is(h, "patchnet_features", "hks")) o.features = DIFFUSION_NET_HKS;
-    else return neuv_fail(NEUV_ERR_INPUT, "model header: \"patchnet_features\" must be \"hks\" or \"xyz\"");
+    else return error_set(NEUV_ERR_INPUT, "model header: \"patchnet_features\" must be \"hks\" or \"xyz\"");
     o.k_eig = (int)k_eig;
     o.blocks = (int)blocks;
     o.width = (int)width;
     o.seed = (uint64_t)seed;
     m->patchnet = calloc(1, sizeof *m->patchnet);
-    if (!m->patchnet) return neuv_fail_nomem("the model");
+    if (!m->patchnet) return error_nomem("the model");
     if ((s = patchnet_model_create(m->patchnet, &o, (int)in_dim, (int)k))) return s;
     return check_params(c, &m->patchnet->params);
 }
@@ -506,13 +506,13 @@ static neuv_status load_category(const nn_checkpoint *c, const char *h, unwrap_m
         (s = header_int(h, "param", 0, 1, &has_param)) || (s = header_int(h, "patchnet", 0, 1, &has_patchnet)))
         return s;
     if (m->method != NEUV_METHOD_NEURAL || !has_param || !has_patchnet)
-        return neuv_fail(NEUV_ERR_INPUT, "a category model must be neural and hold both PatchNet and the "
+        return error_set(NEUV_ERR_INPUT, "a category model must be neural and hold both PatchNet and the "
                                          "parameterization networks");
     const char *dv = header_value(h, "max_distortion");
     char *end;
     double maxd = dv ? strtod(dv, &end) : NAN;
     if (!dv || end == dv || !(maxd >= 1 && maxd < 1e6))
-        return neuv_fail(NEUV_ERR_INPUT, "model header: \"max_distortion\" must be a number >= 1");
+        return error_set(NEUV_ERR_INPUT, "model header: \"max_distortion\" must be a number >= 1");
     m->seed = (uint64_t)seed;
     m->resolution = (int)res;
     m->padding = (int)pad;
@@ -529,22 +529,22 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
     const char *h = c->config;
     neuv_status s;
     if (!header_string_is(h, "format", FORMAT_NAME))
-        return neuv_fail(NEUV_ERR_INPUT, "not a neuv unwrap model (header format is not \"%s\")", FORMAT_NAME);
+        return error_set(NEUV_ERR_INPUT, "not a neuv unwrap model (header format is not \"%s\")", FORMAT_NAME);
     long long ver, seed, res, pad, nc, nv, nf, nuv, has_labels, has_param, has_patchnet;
     if ((s = header_int(h, "model_version", 0, 1 << 30, &ver))) return s;
     if (ver != UNWRAP_MODEL_VERSION)
-        return neuv_fail(NEUV_ERR_INPUT, "model version %lld is not supported (this neuv reads version %d)", ver,
+        return error_set(NEUV_ERR_INPUT, "model version %lld is not supported (this neuv reads version %d)", ver,
                          UNWRAP_MODEL_VERSION);
     if (header_string_is(h, "method", "neural")) m->method = NEUV_METHOD_NEURAL;
     else if (header_string_is(h, "method", "lscm")) m->method = NEUV_METHOD_LSCM;
     else if (header_string_is(h, "method", "harmonic")) m->method = NEUV_METHOD_HARMONIC;
-    else return neuv_fail(NEUV_ERR_INPUT, "model header: \"method\" must be neural, lscm or harmonic");
+    else return error_set(NEUV_ERR_INPUT, "model header: \"method\" must be neural, lscm or harmonic");
     if (header_string_is(h, "preset", "paper")) m->preset = NEUV_PRESET_PAPER;
     else if (header_string_is(h, "preset", "fast")) m->preset = NEUV_PRESET_FAST;
-    else return neuv_fail(NEUV_ERR_INPUT, "model header: \"preset\" must be fast or paper");
+    else return error_set(NEUV_ERR_INPUT, "model header: \"preset\" must be fast or paper");
     if (header_string_is(h, "kind", "category")) return load_category(c, h, m);
     if (header_value(h, "kind") && !header_string_is(h, "kind", "surface"))
-        return neuv_fail(NEUV_ERR_INPUT, "model header: \"kind\" must be \"surface\" or \"category\"");
+        return error_set(NEUV_ERR_INPUT, "model header: \"kind\" must be \"surface\" or \"category\"");
     if ((s = header_int(h, "seed", 0, INT64_MAX, &seed)) || (s = header_int(h, "resolution", 64, 16384, &res)) ||
         (s = header_int(h, "padding", 0, 2048, &pad)) || (s = header_int(h, "charts", 1, 1 << 20, &nc)) ||
         (s = header_int(h, "source_vertices", 3, MAX_EXACT_INT - 1, &nv)) ||
@@ -554,7 +554,7 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
         (s = header_int(h, "patchnet", 0, 1, &has_patchnet)))
         return s;
     if (m->method == NEUV_METHOD_NEURAL && !has_param)
-        return neuv_fail(NEUV_ERR_INPUT, "model says method neural but holds no parameterization network");
+        return error_set(NEUV_ERR_INPUT, "model says method neural but holds no parameterization network");
     /* Shapes first, so a header that lies about sizes allocates nothing. */
     const nn_checkpoint_tensor *t;
     if ((s = want_tensor(c, "source.pos", (int)nv, 6, &t)) || (s = want_tensor(c, "source.tri", (int)nf, 3, &t)) ||
@@ -578,7 +578,7 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
     if (!m->source || !m->source->tri_uv || !m->face_chart || !m->xf || !m->chart_net || !m->chart_mirrored || !xf ||
         !map || (has_labels && !m->face_label)) {
         free(xf); free(map);
-        return neuv_fail_nomem("the model");
+        return error_nomem("the model");
     }
     neuv_mesh *src = m->source;
     s = read_doubles(c, "source.pos", src->nv, 3, src->pos);
@@ -594,9 +594,9 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
         m->xf[k] = (atlas_chart_transform){xf[4 * k], xf[4 * k + 1], xf[4 * k + 2], xf[4 * k + 3]};
         m->chart_net[k] = map[2 * k];
         m->chart_mirrored[k] = map[2 * k + 1];
-        if (!(m->xf[k].scale > 0)) s = neuv_fail(NEUV_ERR_INPUT, "model chart %d has a non-positive packing scale", k);
+        if (!(m->xf[k].scale > 0)) s = error_set(NEUV_ERR_INPUT, "model chart %d has a non-positive packing scale", k);
         else if (m->chart_mirrored[k] != 0 && m->chart_mirrored[k] != 1)
-            s = neuv_fail(NEUV_ERR_INPUT, "model chart %d has a bad mirror flag", k);
+            s = error_set(NEUV_ERR_INPUT, "model chart %d has a bad mirror flag", k);
     }
     free(xf);
     free(map);
@@ -604,7 +604,7 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
     if (has_param && (s = load_param(c, h, m))) return s;
     for (int k = 0; k < m->n_charts; k++)
         if (m->chart_net[k] >= (m->param ? m->param->n_charts : 0))
-            return neuv_fail(NEUV_ERR_INPUT, "model chart %d names network chart %d, which the model lacks", k,
+            return error_set(NEUV_ERR_INPUT, "model chart %d names network chart %d, which the model lacks", k,
                              m->chart_net[k]);
     if (has_patchnet && (s = load_patchnet(c, h, m))) return s;
     return NEUV_OK;
@@ -618,10 +618,10 @@ neuv_status unwrap_model_load(const char *path, unwrap_model **out)
     if (s) return s;
     if (c.version != NN_CHECKPOINT_VERSION) {
         nn_checkpoint_free(&c);
-        return neuv_fail(NEUV_ERR_INPUT, "checkpoint version %u is not supported", c.version);
+        return error_set(NEUV_ERR_INPUT, "checkpoint version %u is not supported", c.version);
     }
     unwrap_model *m = calloc(1, sizeof *m);
-    if (!m) { nn_checkpoint_free(&c); return neuv_fail_nomem("the model"); }
+    if (!m) { nn_checkpoint_free(&c); return error_nomem("the model"); }
     s = load_from(&c, m);
     nn_checkpoint_free(&c);
     if (s) { unwrap_model_free(m); return s; }
