@@ -55,7 +55,7 @@ int main(int argc, char **argv)
         return 2;
     }
     neuv_mesh *m = NULL;
-    if (neuv_mesh_load(mesh_path, &m) != NEUV_OK || mesh_clean(m, NULL, NULL) != NEUV_OK) {
+    if (neuv_mesh_load(mesh_path, NULL, &m) != NEUV_OK || mesh_clean(m, NULL, NULL) != NEUV_OK) {
         fprintf(stderr, "bench_eigen: %s: %s\n", mesh_path, neuv_last_error());
         return 2;
     }

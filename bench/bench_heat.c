@@ -84,7 +84,7 @@ static int bench(const char *path)
 {
     neuv_mesh *m = NULL;
     mesh_clean_report rep;
-    if (neuv_mesh_load(path, &m) != NEUV_OK || mesh_clean(m, NULL, &rep) != NEUV_OK) {
+    if (neuv_mesh_load(path, NULL, &m) != NEUV_OK || mesh_clean(m, NULL, &rep) != NEUV_OK) {
         fprintf(stderr, "bench_heat: %s: %s\n", path, neuv_last_error());
         mesh_free(m);
         return 1;

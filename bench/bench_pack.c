@@ -106,7 +106,7 @@ int main(int argc, char **argv)
         char path[8192];
         snprintf(path, sizeof path, "%s/%s", dir, names[i]);
         neuv_mesh *m = NULL;
-        if (neuv_mesh_load(path, &m) != NEUV_OK || m->nuv == 0 || mesh_weld_positions(m) < 0) {
+        if (neuv_mesh_load(path, NULL, &m) != NEUV_OK || m->nuv == 0 || mesh_weld_positions(m) < 0) {
             printf("| %s | load failed: %s |\n", names[i], neuv_last_error());
             mesh_free(m);
             continue;

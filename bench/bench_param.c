@@ -309,7 +309,7 @@ int main(int argc, char **argv)
     neuv_mesh *m = NULL;
     if (!strcmp(path, "grid")) m = shape_grid(16, 16, 1.0, 1.0, 0); /* tuning shapes, one chart each (K = 1) */
     else if (!strcmp(path, "cap")) m = test_cap();
-    if (!m && (neuv_mesh_load(path, &m) != NEUV_OK || mesh_clean(m, NULL, NULL) != NEUV_OK)) {
+    if (!m && (neuv_mesh_load(path, NULL, &m) != NEUV_OK || mesh_clean(m, NULL, NULL) != NEUV_OK)) {
         fprintf(stderr, "%s: %s\n", path, neuv_last_error());
         return 1;
     }

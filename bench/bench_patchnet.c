@@ -88,7 +88,7 @@ int main(int argc, char **argv)
     printf("cblas_sgemm 1024^3: %.1f GFLOP/s\n", 2.0 * 1024 * 1024 * 1024 / peak * 1e-9);
     for (int mi = 0; mi < nm; mi++) {
         neuv_mesh *m = NULL;
-        if (neuv_mesh_load(meshes[mi], &m) || mesh_clean(m, NULL, NULL)) {
+        if (neuv_mesh_load(meshes[mi], NULL, &m) || mesh_clean(m, NULL, NULL)) {
             fprintf(stderr, "%s: %s\n", meshes[mi], neuv_last_error());
             mesh_free(m);
             continue;

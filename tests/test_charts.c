@@ -372,7 +372,7 @@ static neuv_mesh *load_fertility(void)
     struct stat st;
     if (stat(path, &st) != 0) return NULL;
     neuv_mesh *m = NULL;
-    if (neuv_mesh_load(path, &m) != NEUV_OK) return NULL;
+    if (neuv_mesh_load(path, NULL, &m) != NEUV_OK) return NULL;
     mesh_clean_report cr;
     if (mesh_clean(m, NULL, &cr) != NEUV_OK) { mesh_free(m); return NULL; }
     return m;

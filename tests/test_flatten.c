@@ -172,7 +172,7 @@ static void test_camelhead(void)
 {
     const char *path = shared_path("meshes/camelhead.off");
     neuv_mesh *m = NULL;
-    if (!path || neuv_mesh_load(path, &m) != NEUV_OK) {
+    if (!path || neuv_mesh_load(path, NULL, &m) != NEUV_OK) {
         printf("SKIP camelhead: %s not available\n", path ? path : "../shared");
         return;
     }

@@ -33,10 +33,13 @@ static const char *write_file(const char *name, const void *data, size_t n)
 
 static const char *write_text(const char *name, const char *text) { return write_file(name, text, strlen(text)); }
 
+/* Callbacks the loads report their warnings to (count_warnings, or none). */
+static const neuv_callbacks *load_callbacks;
+
 static neuv_mesh *load_ok(const char *path)
 {
     neuv_mesh *m = NULL;
-    neuv_status s = neuv_mesh_load(path, &m);
+    neuv_status s = neuv_mesh_load(path, load_callbacks, &m);
     if (s != NEUV_OK) fprintf(stderr, "load %s failed: %s\n", path, neuv_last_error());
     CHECK(s == NEUV_OK && m != NULL);
     return m;
@@ -46,7 +49,7 @@ static neuv_mesh *load_ok(const char *path)
 static void expect_load_error(const char *path, neuv_status code, const char *msg)
 {
     neuv_mesh *m = (neuv_mesh *)1;
-    neuv_status s = neuv_mesh_load(path, &m);
+    neuv_status s = neuv_mesh_load(path, NULL, &m);
     CHECK_INT(s, code);
     CHECK(m == NULL);
     if (!strstr(neuv_last_error(), msg)) {
@@ -109,7 +112,8 @@ static void test_obj_reader(void)
 
     /* v//vn corners and no vt at all: no UVs, no warning. */
     warnings = 0;
-    neuv_set_callbacks(count_warnings, NULL, NULL);
+    const neuv_callbacks counting = {count_warnings, NULL, NULL};
+    load_callbacks = &counting;
     m = load_ok(write_text("vn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n"));
     if (m) { CHECK_INT(m->nf, 1); CHECK_INT(m->nuv, 0); CHECK(m->tri_uv == NULL); mesh_free(m); }
     CHECK_INT(warnings, 0);
@@ -120,7 +124,7 @@ static void test_obj_reader(void)
     if (m) { CHECK_INT(m->nf, 2); CHECK_INT(m->nuv, 0); mesh_free(m); }
     CHECK_INT(warnings, 1);
     CHECK(strstr(last_warning, "1 of 2 faces") != NULL);
-    neuv_set_callbacks(NULL, NULL, NULL);
+    load_callbacks = NULL;
 }
 
 /* An L-shaped hexagon whose first corner is next to the reflex corner, on a

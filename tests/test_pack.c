@@ -390,7 +390,7 @@ int main(void)
 
     const char *path = shared_path("uv-samples/spot-xatlas.obj");
     neuv_mesh *s = NULL;
-    if (path && neuv_mesh_load(path, &s) == NEUV_OK) {
+    if (path && neuv_mesh_load(path, NULL, &s) == NEUV_OK) {
         CHECK(mesh_weld_positions(s) >= 0);
         check_pack("spot-xatlas, 512 px pad 2", s, 512, 2, 0.60);
         mesh_free(s);

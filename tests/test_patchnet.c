@@ -269,7 +269,7 @@ static void test_auto_disks(void)
     const char *path = shared_path("meshes/fertility.off");
     if (!path || SANITIZED) return;
     neuv_mesh *m = NULL;
-    if (neuv_mesh_load(path, &m) != NEUV_OK) { printf("fertility.off not readable: skipped\n"); return; }
+    if (neuv_mesh_load(path, NULL, &m) != NEUV_OK) { printf("fertility.off not readable: skipped\n"); return; }
     CHECK(mesh_clean(m, NULL, NULL) == NEUV_OK);
     CHECK(segment(m, &o, &s));
     check_disk_cover(m, &s, "fertility");

@@ -52,7 +52,7 @@ int main(void)
     neuv_mesh *mesh = shape_capsule(0.5, 1.0, 16, 8);
     CHECK(mesh != NULL);
     neuv_unwrap_options o;
-    neuv_unwrap_options_default(&o);
+    neuv_unwrap_options_init(&o);
     o.method = NEUV_METHOD_LSCM;
     o.iters = 30;
     o.use_cache = 0;

@@ -1,30 +1,65 @@
 /* neuv — neural, self-supervised, discretization-agnostic UV unwrapping.
  *
- * Usage:
+ * A C99 interface. Usage, on arrays the application already holds:
  *
  *     #include <neuv/neuv.h>
  *
- *     neuv_mesh *mesh = NULL;
- *     if (neuv_mesh_load("spot.obj", &mesh) != NEUV_OK) {
+ *     neuv_atlas *atlas = NULL;
+ *     neuv_mesh_decl mesh;
+ *     neuv_mesh_decl_init(&mesh);
+ *     mesh.positions = positions;          // float x, y, z per vertex
+ *     mesh.position_stride = 3 * sizeof(float);
+ *     mesh.vertex_count = vertex_count;
+ *     mesh.indices = indices;              // uint32, three per triangle
+ *     mesh.index_count = index_count;
+ *     neuv_unwrap_options options;
+ *     neuv_unwrap_options_init(&options);
+ *     if (neuv_atlas_create(&atlas) != NEUV_OK ||
+ *         neuv_atlas_add_mesh(atlas, &mesh) != NEUV_OK ||
+ *         neuv_atlas_generate(atlas, &options) != NEUV_OK) {
  *         fprintf(stderr, "error: %s\n", neuv_last_error());
+ *         neuv_atlas_destroy(atlas);
  *         return 2;
  *     }
- *     printf("%d vertices, %d faces\n", neuv_mesh_vertex_count(mesh),
- *            neuv_mesh_face_count(mesh));
- *     if (neuv_mesh_save(mesh, "copy.obj") != NEUV_OK) { ... }
- *     neuv_mesh_free(mesh);
+ *     neuv_atlas_output out;
+ *     neuv_atlas_get_output(atlas, 0, &out);
+ *     for (int i = 0; i < out.vertex_count; i++)
+ *         use(out.xref[i], out.uvs[2 * i], out.uvs[2 * i + 1]);   // input vertex, its UV
+ *     for (int i = 0; i < out.index_count; i++)
+ *         use_index(out.indices[i]);                            // three per output triangle
+ *     neuv_atlas_destroy(atlas);
  *
- * Lifetimes: every object returned through an out-pointer (`neuv_mesh **`)
- * belongs to the caller and is released with its `_free` function; a failing
- * call leaves the out-pointer NULL and allocates nothing.
+ * The stages can also run one by one and again with other options:
+ * neuv_atlas_compute_charts, neuv_atlas_parameterize, neuv_atlas_pack;
+ * re-running a stage discards the stages after it.
+ *
+ * Lifetimes: every object returned through an out-pointer (`neuv_mesh **`,
+ * `neuv_atlas **`, `neuv_model **`) belongs to the caller and is released
+ * with its `_free`/`_destroy` function; a failing call leaves the
+ * out-pointer NULL and keeps nothing. Strings and arrays the library returns
+ * by pointer are released with neuv_free. Pointers inside output structs
+ * (neuv_atlas_output) belong to the object they came from and stay valid
+ * until it is destroyed or its stages run again. Input arrays are copied:
+ * the caller may free them once the call returns.
  *
  * Errors: every fallible call returns a neuv_status. On failure a one-line
- * message describing what is wrong is available from neuv_last_error() (per
- * thread) until the next failing call. The library never exits and never
- * prints: it reports through the callbacks set with neuv_set_callbacks().
+ * message saying what is wrong is available from neuv_last_error() (per
+ * thread) until the next failing call on that thread. The library never
+ * exits and never prints: it reports through the callbacks of the object or
+ * call (neuv_callbacks).
+ *
+ * Threads: objects are independent; two threads may each use their own
+ * atlas (or model) at the same time, with the same results as one after the
+ * other. One object must not be used by two threads at once. Each call may
+ * use several threads itself (OpenMP; `threads` in the options).
+ *
+ * Determinism: same input, options, seed and thread count give the same
+ * output bytes on one machine. The report's seconds are timings.
  */
 #ifndef NEUV_NEUV_H
 #define NEUV_NEUV_H
+
+#include <stddef.h>
 
 /* NEUV_API marks what the shared library exports; everything else in it is
  * hidden. Defined empty for the static library. */
@@ -43,15 +78,23 @@ typedef enum neuv_status {
     NEUV_ERR_INTERNAL = 1, /* a bug or an unexpected numerical failure */
     NEUV_ERR_INPUT = 2,    /* bad input file, bad argument, unusable mesh */
     NEUV_ERR_IO = 3,       /* cannot read or write a path */
-    NEUV_ERR_NOMEM = 4     /* an allocation failed (mesh too large for memory) */
+    NEUV_ERR_NOMEM = 4,    /* an allocation failed (mesh too large for memory) */
+    NEUV_ERR_CANCELLED = 5 /* the progress callback returned 0 */
 } neuv_status;
 
 /* Message of the last failure on this thread ("" if none). */
 NEUV_API const char *neuv_last_error(void);
 /* Short name of a status ("ok", "bad input", ...). */
 NEUV_API const char *neuv_status_name(neuv_status status);
-/* Process exit code for a status: 0 ok, 2 bad input/IO, 1 internal. */
+/* Process exit code for a status: 0 ok, 2 bad input, I/O, memory or
+ * cancelled, 1 internal. */
 NEUV_API int neuv_exit_code(neuv_status status);
+/* "0.1.0". */
+NEUV_API const char *neuv_version(void);
+/* Releases a string or array the library returned by pointer (NULL: nothing). */
+NEUV_API void neuv_free(void *ptr);
+
+/* ---- callbacks ---------------------------------------------------------- */
 
 typedef enum neuv_log_level {
     NEUV_LOG_DEBUG = 0,
@@ -59,71 +102,404 @@ typedef enum neuv_log_level {
     NEUV_LOG_WARN = 2
 } neuv_log_level;
 
-/* A message for the user (a repair done, a choice made). */
+/* A message for the user (a repair done, a choice made, a warning about the input). */
 typedef void (*neuv_log_fn)(void *user, neuv_log_level level, const char *message);
-/* Progress of a long stage: fraction in [0,1]; detail is e.g. "iter 120 loss 0.031". */
-typedef void (*neuv_progress_fn)(void *user, const char *stage, double fraction, const char *detail);
-/* Process-wide callbacks (NULL to silence). Not thread-safe to change while running. */
-NEUV_API void neuv_set_callbacks(neuv_log_fn log, neuv_progress_fn progress, void *user);
+/* Progress of a long stage: fraction in [0,1] within the stage; detail is
+ * e.g. "iter 120 loss 0.031" or NULL. Return nonzero to go on, 0 to cancel:
+ * the call then stops at its next check (within one training step) and
+ * returns NEUV_ERR_CANCELLED, keeping no partial result. */
+typedef int (*neuv_progress_fn)(void *user, const char *stage, double fraction, const char *detail);
 
-NEUV_API const char *neuv_version(void);
+/* The callbacks of one object or call. Both may be NULL (silent). They are
+ * called on the thread that made the call. */
+typedef struct neuv_callbacks {
+    neuv_log_fn log;
+    neuv_progress_fn progress;
+    void *user;
+} neuv_callbacks;
+
+/* ---- meshes ------------------------------------------------------------- */
 
 /* A triangle mesh, optionally with per-corner UVs. */
 typedef struct neuv_mesh neuv_mesh;
 
-/* Reads OBJ, OFF, PLY (ASCII and binary), STL, glTF/GLB; polygons are triangulated. */
-NEUV_API neuv_status neuv_mesh_load(const char *path, neuv_mesh **out);
-/* Writes by extension: .obj, .ply, .glb/.gltf; atomically (temporary file, then rename). */
+typedef enum neuv_scalar_type { NEUV_FLOAT32 = 0, NEUV_FLOAT64 = 1 } neuv_scalar_type;
+typedef enum neuv_index_type { NEUV_UINT32 = 0, NEUV_UINT16 = 1, NEUV_INT32 = 2 } neuv_index_type;
+
+/* A mesh described by the caller's arrays (copied by the call that takes it). */
+typedef struct neuv_mesh_decl {
+    const void *positions;          /* vertex_count points of 3 scalars */
+    neuv_scalar_type position_type; /* NEUV_FLOAT32 by default */
+    size_t position_stride;         /* bytes from one vertex to the next; 0: tightly packed */
+    int vertex_count;
+    const void *indices;            /* index_count indices, 3 per triangle, counter-clockwise;
+                                       NULL: the vertices taken three by three */
+    neuv_index_type index_type;     /* NEUV_UINT32 by default */
+    int index_count;
+    const void *uvs;                /* optional existing UVs: 2 scalars per vertex, or NULL */
+    neuv_scalar_type uv_type;
+    size_t uv_stride;               /* 0: tightly packed */
+} neuv_mesh_decl;
+
+/* Zeroes d: float32 positions, uint32 indices, no UVs. */
+NEUV_API void neuv_mesh_decl_init(neuv_mesh_decl *d);
+
+/* Copies the arrays of d into a new mesh. Errors (NEUV_ERR_INPUT, with the
+ * offending vertex or index in the message): no vertices or no triangles,
+ * index_count not a multiple of 3, an index out of range, a position or UV
+ * that is not finite, a stride smaller than its element. */
+NEUV_API neuv_status neuv_mesh_create(const neuv_mesh_decl *d, neuv_mesh **out);
+/* Reads OBJ, OFF, PLY (ASCII and binary), STL, glTF/GLB; polygons are
+ * triangulated. Warnings about the file go to cb (may be NULL). */
+NEUV_API neuv_status neuv_mesh_load(const char *path, const neuv_callbacks *cb, neuv_mesh **out);
+/* Writes by extension: .obj, .ply, .glb/.gltf; atomically (a temporary file
+ * in the same folder, then a rename), so a failure leaves no file behind. */
 NEUV_API neuv_status neuv_mesh_save(const neuv_mesh *mesh, const char *path);
 NEUV_API void neuv_mesh_free(neuv_mesh *mesh);
 NEUV_API int neuv_mesh_vertex_count(const neuv_mesh *mesh);
 NEUV_API int neuv_mesh_face_count(const neuv_mesh *mesh);
 NEUV_API int neuv_mesh_has_uv(const neuv_mesh *mesh);
+/* The repairs neuv_mesh_clean made (docs/cli.md "Cleaning"). */
+typedef struct neuv_clean_report {
+    int welded_vertices;          /* merged into an earlier vertex at the identical position */
+    int degenerate_faces;         /* dropped: a repeated vertex or zero area */
+    int duplicate_faces;          /* dropped: the same vertices as an earlier face */
+    int unreferenced_vertices;    /* dropped: used by no face */
+    int flipped_faces;            /* reversed so that each component is consistently oriented */
+    int nonmanifold_edges;        /* found with more than two faces (split apart) */
+    int nonmanifold_vertices;     /* whose faces form more than one fan (split apart) */
+    int split_vertices;           /* added by those splits */
+    int nonorientable_components; /* left as they are (Moebius strips) */
+} neuv_clean_report;
+/* The repairs every unwrap makes on its copy of the input, in place: weld,
+ * drop degenerate and duplicate faces, split non-manifold edges and
+ * vertices, drop unreferenced vertices, orient each component (closed ones
+ * outward). UVs stay with their corners. report may be NULL. A mesh left
+ * with no faces is NEUV_ERR_INPUT. */
+NEUV_API neuv_status neuv_mesh_clean(neuv_mesh *mesh, neuv_clean_report *report);
+/* Only the welding of vertices at exactly identical positions (what
+ * neuv_evaluate does on its copy, so that seams are found across shared
+ * edges); *welded (may be NULL) gets how many were merged. */
+NEUV_API neuv_status neuv_mesh_weld(neuv_mesh *mesh, int *welded);
 
-/* ---- unwrapping -------------------------------------------------------- */
+/* Copies out the positions (3 per vertex) and the triangles (3 vertex
+ * indices per face). */
+NEUV_API void neuv_mesh_get_positions(const neuv_mesh *mesh, double *positions);
+NEUV_API void neuv_mesh_get_indices(const neuv_mesh *mesh, int *indices);
+/* Copies out the UVs per corner: 6 numbers per face (u, v of its three
+ * corners in order). Returns 1, or 0 (nothing written) when the mesh has
+ * no UVs. */
+NEUV_API int neuv_mesh_get_corner_uvs(const neuv_mesh *mesh, double *uvs);
+
+/* A built-in procedural shape: "bumpy-torus" (the demo's), "sphere",
+ * "capsule", "cube", "genus2", or a member (>= 0) of a family for category
+ * models: "bent-capsule", "blob". member is -1 for the single shapes. */
+NEUV_API neuv_status neuv_shape(const char *name, int member, neuv_mesh **out);
+
+/* ---- options ------------------------------------------------------------ */
 
 typedef enum neuv_method {
-    NEUV_METHOD_NEURAL = 0,  /* the paper's parameterization networks (default) */
+    NEUV_METHOD_NEURAL = 0,  /* the parameterization networks (default) */
     NEUV_METHOD_LSCM = 1,    /* least squares conformal maps, same charts */
     NEUV_METHOD_HARMONIC = 2 /* cotangent harmonic map, boundary on a circle, same charts */
 } neuv_method;
 
 typedef enum neuv_preset {
-    NEUV_PRESET_FAST = 0,  /* smallest networks that reach the quality bar on a CPU */
-    NEUV_PRESET_PAPER = 1  /* the paper's configuration */
+    NEUV_PRESET_FAST = 0,  /* networks sized for a CPU (default) */
+    NEUV_PRESET_PAPER = 1  /* the published method's configuration */
 } neuv_preset;
 
+/* Charts: the mesh is cleaned (docs/cli.md "Cleaning"), then PatchNet cuts it. */
+typedef struct neuv_chart_options {
+    neuv_preset preset;
+    int charts;              /* 0: automatic (default); K: exactly K patches before disk cutting */
+    double max_distortion;   /* automatic charts: split until every chart's LSCM qce_mean is below it (1.15) */
+    int iters;               /* PatchNet training steps; 0: the preset's */
+    unsigned long long seed; /* every random choice derives from it (1) */
+    int threads;             /* 0: the machine's */
+    int use_cache;           /* 1: operators through the on-disk cache (default 1) */
+} neuv_chart_options;
+NEUV_API void neuv_chart_options_init(neuv_chart_options *o);
+
+/* Parameterization of the charts, their repair and refinement. */
+typedef struct neuv_param_options {
+    neuv_method method;
+    neuv_preset preset;
+    int iters;               /* training steps of the networks; 0: the preset's */
+    int refine;              /* neural: vertex refinement steps after the networks (400); 0: none */
+    unsigned long long seed; /* (1) */
+    int threads;             /* 0: the machine's */
+    int allow_overlaps;      /* 1: keep folded network maps (no repair) */
+} neuv_param_options;
+NEUV_API void neuv_param_options_init(neuv_param_options *o);
+
+/* Packing into one square. */
+typedef struct neuv_pack_options {
+    int resolution;          /* atlas side in pixels, 64..16384 (1024) */
+    int padding;             /* pixels between charts and to the border, 0..resolution/8 (2) */
+    int keep_scale;          /* neuv_pack_uvs only: keep the charts' relative scales */
+} neuv_pack_options;
+NEUV_API void neuv_pack_options_init(neuv_pack_options *o);
+
+/* All stages at once (neuv_atlas_generate), with the same fields and
+ * defaults as the three stage options above. */
 typedef struct neuv_unwrap_options {
     neuv_method method;
     neuv_preset preset;
-    int charts;              /* 0: automatic; K: exactly K patches before disk cutting */
-    double max_distortion;   /* auto charts: split until every chart's LSCM qce_mean is below (1.15) */
-    int iters;               /* 0: preset default; otherwise training iterations per network */
-    int refine;              /* neural: vertex refinement steps after the networks (400); 0: off */
-    unsigned long long seed; /* every random choice derives from it (default 1) */
-    int threads;             /* 0: library default */
-    int resolution;          /* atlas side in pixels (1024) */
-    int padding;             /* pixels between charts and to the border (2) */
-    int allow_overlaps;      /* 1: skip the repair of folded charts */
-    int use_cache;           /* 1: operators through the on-disk cache (default) */
+    int charts;
+    double max_distortion;
+    int iters;
+    int refine;
+    unsigned long long seed;
+    int threads;
+    int resolution;
+    int padding;
+    int allow_overlaps;
+    int use_cache;
+    int keep_model;          /* 1: keep the networks so that neuv_atlas_get_model can save them;
+                                the atlas is the same as without */
+    int train_faces;         /* > 0: above this many faces, train on a simplified copy of that many
+                                and apply the model to the mesh (0, the default: train on the mesh) */
 } neuv_unwrap_options;
+NEUV_API void neuv_unwrap_options_init(neuv_unwrap_options *o);
 
-NEUV_API void neuv_unwrap_options_default(neuv_unwrap_options *o);
+/* ---- metrics (docs/metrics.md) ------------------------------------------ */
 
-/* The outcome of one unwrap: the cleaned mesh with its packed UVs, the
- * charts, per-stage seconds, every repair, and the metrics. */
+typedef struct neuv_metrics {
+    int charts;                   /* UV-connected components */
+    double qce_mean, qce_p95, qce_max;    /* quasi-conformal error s1/s2, area-weighted */
+    double ase_mean, ase_abs_mean, ase_abs_mean_chart; /* area scale error */
+    double l2_stretch, linf_stretch;
+    double sym_dirichlet_mean;
+    int flipped, degenerate_uv;   /* faces turned over / of zero UV area */
+    double overlap_fraction;      /* share of UV area covered twice */
+    double packing_efficiency;    /* UV area / unit square; NaN when UVs leave [0,1]^2 */
+    double seam_length;           /* relative to sqrt(3D area) */
+    int excluded_faces;           /* faces of (nearly) zero 3D area, left out */
+} neuv_metrics;
+
+/* The metrics of a mesh's UVs as JSON (docs/report.md "neuv eval"): an
+ * object with the version, input_name, vertices, faces and the metrics;
+ * release with neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_metrics_json(const neuv_metrics *metrics, const neuv_mesh *mesh, const char *input_name);
+
+/* The metrics of `neuv eval`: of mesh's UVs, positions welded first (on a
+ * copy) so that seams are found across exactly coinciding vertices.
+ * NEUV_ERR_INPUT when the mesh has no UVs. */
+NEUV_API neuv_status neuv_evaluate(const neuv_mesh *mesh, neuv_metrics *out);
+
+/* ---- the atlas ---------------------------------------------------------- */
+
+typedef struct neuv_atlas neuv_atlas;
+
+NEUV_API neuv_status neuv_atlas_create(neuv_atlas **out);
+NEUV_API void neuv_atlas_destroy(neuv_atlas *atlas);
+/* Callbacks for every later call on this atlas (cb copied; NULL: silent). */
+NEUV_API void neuv_atlas_set_callbacks(neuv_atlas *atlas, const neuv_callbacks *cb);
+
+/* Adds a mesh (copied). Several meshes share one atlas: they are unwrapped
+ * as the components of one mesh and packed into one square, and the output
+ * is given per mesh. Adding discards any stage already run. */
+NEUV_API neuv_status neuv_atlas_add_mesh(neuv_atlas *atlas, const neuv_mesh_decl *mesh);
+/* The same with a loaded mesh (copied). */
+NEUV_API neuv_status neuv_atlas_add_loaded_mesh(neuv_atlas *atlas, const neuv_mesh *mesh);
+NEUV_API int neuv_atlas_mesh_count(const neuv_atlas *atlas);
+
+/* Stage 1: cleaning, operators, PatchNet charts. */
+NEUV_API neuv_status neuv_atlas_compute_charts(neuv_atlas *atlas, const neuv_chart_options *o);
+/* Stage 2 (after 1): each chart flattened, repaired where it folds, refined. */
+NEUV_API neuv_status neuv_atlas_parameterize(neuv_atlas *atlas, const neuv_param_options *o);
+/* Stage 3 (after 2): charts that pack badly are split, then packed; metrics. */
+NEUV_API neuv_status neuv_atlas_pack(neuv_atlas *atlas, const neuv_pack_options *o);
+/* All three (and, with train_faces, the simplified-copy path) in one call.
+ * Gives the same bytes as the three stages with the same options. */
+NEUV_API neuv_status neuv_atlas_generate(neuv_atlas *atlas, const neuv_unwrap_options *o);
+
+/* Number of the last stage run: 0 none, 1 charts, 2 parameterized, 3 packed. */
+NEUV_API int neuv_atlas_stage(const neuv_atlas *atlas);
+/* Charts after the last stage run (0 before stage 1). */
+NEUV_API int neuv_atlas_chart_count(const neuv_atlas *atlas);
+
+/* The packed atlas of mesh `index` (in the order added), valid after stage
+ * 3: output vertices are split where a seam runs, so each has one UV. */
+typedef struct neuv_atlas_output {
+    int vertex_count;
+    const int *xref;           /* vertex_count: the input vertex of this mesh at the same position
+                                  (the first one when several input vertices coincide) */
+    const double *uvs;         /* 2 per output vertex, in [0,1]^2 */
+    int index_count;           /* 3 per output triangle */
+    const unsigned int *indices;
+    const int *face_chart;     /* index_count / 3: chart id of each output triangle */
+} neuv_atlas_output;
+/* Cleaning may drop degenerate or duplicate triangles and reorient
+ * components (the counts are in the report): output triangles follow the
+ * cleaned mesh. */
+NEUV_API neuv_status neuv_atlas_get_output(neuv_atlas *atlas, int index, neuv_atlas_output *out);
+/* The whole cleaned mesh with its packed per-corner UVs (owned by the
+ * atlas), e.g. for neuv_mesh_save; NULL before stage 3. */
+NEUV_API const neuv_mesh *neuv_atlas_mesh(const neuv_atlas *atlas);
+/* The metrics of the packed atlas, as neuv_evaluate reads the saved mesh. */
+NEUV_API neuv_status neuv_atlas_get_metrics(const neuv_atlas *atlas, neuv_metrics *out);
+
+/* Where a chart's final map came from (docs/report.md "sources"). */
+typedef enum neuv_chart_source {
+    NEUV_SOURCE_NETWORK = 0,          /* the networks' map, untouched (only placed by packing) */
+    NEUV_SOURCE_NETWORK_REFINED,      /* the networks' injective map, then refined */
+    NEUV_SOURCE_NETWORK_FOLDED,       /* the networks' map kept with its folds (allow_overlaps) */
+    NEUV_SOURCE_LSCM_AFTER_FOLD,      /* the networks' map folded; LSCM flattened the chart */
+    NEUV_SOURCE_LSCM_AFTER_SPLIT,     /* a piece of a chart split because its map folded; LSCM */
+    NEUV_SOURCE_LSCM,                 /* method LSCM */
+    NEUV_SOURCE_HARMONIC,             /* method harmonic */
+    NEUV_SOURCE_HARMONIC_AFTER_SPLIT,
+    NEUV_SOURCE_TRANSFERRED,          /* a saved model's classic chart: UVs from its source surface */
+    NEUV_SOURCE_COUNT
+} neuv_chart_source;
+/* "network", "network+refined", ... as in the report. */
+NEUV_API const char *neuv_chart_source_name(neuv_chart_source s);
+
+typedef struct neuv_chart_info {
+    int faces;
+    double area;               /* 3D area */
+    neuv_chart_source source;
+    double network_qce;        /* the networks' own qce_mean on it before anything else touched it
+                                  (NaN: the networks made no map of it) */
+    double qce;                /* final qce_mean */
+} neuv_chart_info;
+/* Valid after stage 2 for charts 0..neuv_atlas_chart_count-1. */
+NEUV_API neuv_status neuv_atlas_get_chart(const neuv_atlas *atlas, int chart, neuv_chart_info *out);
+
+/* The report as a struct: counts and seconds of the last run. */
+typedef struct neuv_report {
+    int input_vertices, input_faces;
+    int vertices, faces;             /* after cleaning */
+    int charts;
+    int charts_by_source[NEUV_SOURCE_COUNT];
+    double network_area_fraction;    /* share of 3D area whose map the networks made injectively */
+    double network_qce_mean;         /* area-weighted over those charts; NaN if none */
+    int repairs;
+    double seconds_clean, seconds_operators, seconds_patches, seconds_param, seconds_repair,
+        seconds_pack, seconds_metrics, seconds_total;
+    neuv_metrics metrics;            /* valid after stage 3 */
+    int from_model;                  /* 1: the atlas came from a saved or category model */
+    int moved_charts;                /* surface model: charts not where the model's atlas put them */
+    int trained_on_copy;             /* train_faces: 1 when the networks trained on a simplified copy */
+    int train_faces;                 /* ... of this many faces */
+} neuv_report;
+NEUV_API neuv_status neuv_atlas_get_report(const neuv_atlas *atlas, neuv_report *out);
+/* The JSON report (docs/report.md); release with neuv_free. input_name,
+ * load_seconds and export_seconds are the caller's (file name, its own
+ * reading and writing), added to the report. NULL (and neuv_last_error)
+ * before stage 3 or when memory runs out. */
+NEUV_API char *neuv_atlas_report_json(const neuv_atlas *atlas, const char *input_name, double load_seconds,
+                                      double export_seconds);
+
+/* ---- models ------------------------------------------------------------- */
+
+/* A saved unwrap (the surface model of one mesh: reproduces its atlas on
+ * other triangulations of the same surface) or a category model (trained
+ * on several shapes: unwraps unseen shapes of the category by inference). */
+typedef struct neuv_model neuv_model;
+
+NEUV_API neuv_status neuv_model_load(const char *path, neuv_model **out);
+/* Atomic (a temporary file, then a rename). */
+NEUV_API neuv_status neuv_model_save(const neuv_model *model, const char *path);
+NEUV_API void neuv_model_free(neuv_model *model);
+/* 1 for a category model, 0 for a surface model. */
+NEUV_API int neuv_model_is_category(const neuv_model *model);
+
+/* The surface model of the atlas's last neuv_atlas_generate, which must
+ * have run with keep_model = 1 (else NEUV_ERR_INPUT). Hands the networks
+ * over: a second call fails. */
+NEUV_API neuv_status neuv_atlas_take_model(neuv_atlas *atlas, neuv_model **out);
+
+typedef struct neuv_apply_options {
+    int threads;             /* 0: the machine's */
+    int use_cache;           /* (1) */
+    int allow_overlaps;      /* category models: keep folded network maps */
+    /* surface models */
+    int check_inference;     /* 1: also run PatchNet on the mesh and report its label agreement */
+    int lscm_baseline;       /* 1: a baseline, not the model's map: the model's charts flattened by LSCM */
+    /* category models */
+    int finetune;            /* training steps from the model's weights (0: inference only) */
+    int shared_layer;        /* 1: the model's shared output layer maps every chart (no per-chart
+                                layer solved on this shape) */
+    int refine;              /* vertex refinement steps; -1 (default): the model's */
+} neuv_apply_options;
+NEUV_API void neuv_apply_options_init(neuv_apply_options *o);
+
+/* Unwraps the atlas's meshes with a model instead of training: a surface
+ * model carries its atlas over to this triangulation of its surface; a
+ * category model charts and maps this unseen shape by inference. Replaces
+ * every stage (the atlas is then at stage 3). Options that do not apply to
+ * the model's kind are refused with NEUV_ERR_INPUT. */
+NEUV_API neuv_status neuv_atlas_apply_model(neuv_atlas *atlas, const neuv_model *model,
+                                           const neuv_apply_options *o);
+
+typedef struct neuv_train_report {
+    int shapes, faces, charts;       /* over all shapes, after cleaning */
+    int patch_k;                     /* PatchNet's patches */
+    int patch_iterations, param_iterations;
+    double patch_loss, param_loss;   /* at the last step */
+    double seconds_operators, seconds_patches, seconds_charts, seconds_param, seconds;
+} neuv_train_report;
+/* The report as JSON (docs/report.md "neuv train"), naming the model file;
+ * release with neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_train_report_json(const neuv_train_report *report, const char *model_name);
+
+/* Trains a category model on meshes[0..n-1] (n >= 1): method must be
+ * neural; preset, charts (0: automatic after K = 8), seed, iters, refine,
+ * resolution, padding and max_distortion are stored in the model and used
+ * when it is applied; threads and use_cache apply here. patch_iters:
+ * PatchNet steps (0: every shape seen about 40 times). report may be NULL. */
+NEUV_API neuv_status neuv_train_category(const neuv_mesh *const *meshes, int n, const neuv_unwrap_options *o,
+                                         int patch_iters, const neuv_callbacks *cb, neuv_model **out,
+                                         neuv_train_report *report);
+
+/* ---- existing UV maps --------------------------------------------------- */
+
+typedef struct neuv_pack_report {
+    int charts;                /* UV-connected components packed */
+    int attempts;              /* packings tried */
+    double texel_scale;        /* pixels per unit of surface length */
+} neuv_pack_report;
+
+/* Repacks the charts of mesh's UVs (UV-connected components) into one
+ * square, in place; positions are welded first (exactly coinciding only).
+ * NEUV_ERR_INPUT when the mesh has no UVs. report may be NULL. */
+NEUV_API neuv_status neuv_pack_uvs(neuv_mesh *mesh, const neuv_pack_options *o, neuv_pack_report *report);
+
+/* ---- pictures ---------------------------------------------------------- */
+
+typedef enum neuv_preview_color {
+    NEUV_PREVIEW_CHART = 0,  /* one colour per chart */
+    NEUV_PREVIEW_QCE = 1,    /* each face by its quasi-conformal error */
+    NEUV_PREVIEW_AREA = 2    /* each face by its area scale error */
+} neuv_preview_color;
+
+/* Writes PREFIX-uv.png (the UV layout: charts coloured, edges drawn,
+ * flipped faces red, overlaps highlighted) and PREFIX-checker.png (the
+ * mesh with a checkerboard through its UVs from four views), 1024 px.
+ * NEUV_ERR_INPUT when the mesh has no UVs; NEUV_ERR_IO when a file cannot
+ * be written. */
+NEUV_API neuv_status neuv_write_preview(const neuv_mesh *mesh, const char *prefix, neuv_preview_color color);
+
+/* ---- files --------------------------------------------------------------- */
+
+/* Writes text and a newline to path atomically (a temporary file in the
+ * same folder, then a rename): a failure leaves no file behind. */
+NEUV_API neuv_status neuv_save_text(const char *path, const char *text);
+
+/* ---- one call ----------------------------------------------------------- */
+
+/* The older one-call interface: neuv_atlas_generate on a copy of mesh.
+ * The result owns the unwrapped mesh. */
 typedef struct neuv_unwrap_result neuv_unwrap_result;
-
-/* Cleans a copy of `mesh` (the input is not modified), computes operators,
- * charts, the parameterization, repairs, and packs the atlas. */
 NEUV_API neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, neuv_unwrap_result **out);
-/* The unwrapped mesh (owned by the result). */
 NEUV_API const neuv_mesh *neuv_unwrap_mesh(const neuv_unwrap_result *r);
 NEUV_API int neuv_unwrap_chart_count(const neuv_unwrap_result *r);
-/* The JSON report of SPEC.md section 4 (caller frees). load_seconds and
- * export_seconds are the caller's own stages, added to the report. */
+/* The JSON report (release with neuv_free). */
 NEUV_API char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_name,
-                              double load_seconds, double export_seconds);
+                                       double load_seconds, double export_seconds);
 NEUV_API void neuv_unwrap_result_free(neuv_unwrap_result *r);
 
 #ifdef __cplusplus

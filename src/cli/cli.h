@@ -17,18 +17,21 @@ int cli_error(const char *what, const char *fmt, ...) __attribute__((format(prin
 /* Prints the library's last error for a failed call on `what`; returns its exit code. */
 int cli_fail(const char *what, neuv_status status);
 
+/* Seconds on a monotonic clock, for the timings the CLI reports. */
+double cli_now_seconds(void);
+
 /* Installs the progress bar (stderr, only on a terminal and without --quiet)
  * and the message logger. */
 void cli_install_callbacks(void);
+/* Those callbacks, for the library calls that take them. */
+const neuv_callbacks *cli_callbacks(void);
 /* Ends a progress line so the next output starts on a fresh line. */
 void cli_progress_done(void);
 
-struct neuv_mesh;
-struct mesh_clean_report;
-/* Loads `in` and cleans it (mesh_clean). On failure prints the one-line
+/* Loads `in` and cleans it (neuv_mesh_clean). On failure prints the one-line
  * error, frees everything, leaves *out NULL and returns the exit code;
  * returns 0 on success. A mesh whose faces all were degenerate is an error. */
-int cli_load_clean(const char *in, struct neuv_mesh **out, struct mesh_clean_report *report);
+int cli_load_clean(const char *in, neuv_mesh **out, neuv_clean_report *report);
 
 struct json_writer;
 /* Prints the finished JSON document on stdout and frees the writer; returns
@@ -48,6 +51,10 @@ int cli_arg_global(int argc, char **argv, int *i, int *bad);
  * success, else the one-line error is printed and 2 returned. */
 int cli_parse_charts(const char *s, int *out);
 int cli_parse_preset(const char *s, neuv_preset *out);
+
+/* Prints a JSON document from the library on stdout and releases it;
+ * NULL (the library ran out of memory): the error, and 1. */
+int cli_print_document(char *json);
 
 /* Writes text and a newline to path atomically; returns 0 or the exit code
  * (after printing the error). */

@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
-#include "core/atomic_file.h"
 #include "core/json_writer.h"
-#include "mesh/clean.h"
+#include "core/log.h"
 #include "core/timer.h"
 
 cli_options cli_opts;
@@ -38,6 +38,13 @@ int cli_fail(const char *what, neuv_status status)
     return neuv_exit_code(status);
 }
 
+double cli_now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 /* ---- progress bar ---------------------------------------------------- */
 
 static struct {
@@ -47,7 +54,7 @@ static struct {
     double last_draw;
 } bar;
 
-static void progress_cb(void *user, const char *stage, double fraction, const char *detail)
+static int progress_cb(void *user, const char *stage, double fraction, const char *detail)
 {
     (void)user;
     double now = now_seconds();
@@ -56,7 +63,7 @@ static void progress_cb(void *user, const char *stage, double fraction, const ch
         bar.stage_start = now;
         bar.last_draw = 0;
     }
-    if (fraction < 1.0 && now - bar.last_draw < 0.1) return; /* at most 10 redraws a second */
+    if (fraction < 1.0 && now - bar.last_draw < 0.1) return 1; /* at most 10 redraws a second */
     bar.last_draw = now;
     if (fraction < 0) fraction = 0;
     if (fraction > 1) fraction = 1;
@@ -75,6 +82,7 @@ static void progress_cb(void *user, const char *stage, double fraction, const ch
             detail ? detail : "", eta);
     fflush(stderr);
     bar.active = 1;
+    return 1;
 }
 
 static void log_cb(void *user, neuv_log_level level, const char *message)
@@ -86,11 +94,24 @@ static void log_cb(void *user, neuv_log_level level, const char *message)
     fprintf(stderr, "neuv: %s%s\n", level == NEUV_LOG_WARN ? "warning: " : "", message);
 }
 
+static neuv_callbacks callbacks;
+/* The commands that still call the library's internals report through this
+ * scope, open for the whole run on the main thread. */
+static log_scope internal_scope;
+static int internal_scope_open;
+
 void cli_install_callbacks(void)
 {
     int show_bar = !cli_opts.quiet && isatty(STDERR_FILENO);
-    neuv_set_callbacks(log_cb, show_bar ? progress_cb : NULL, NULL);
+    callbacks.log = log_cb;
+    callbacks.progress = show_bar ? progress_cb : NULL;
+    callbacks.user = NULL;
+    if (internal_scope_open) log_scope_close(&internal_scope);
+    log_scope_open(&internal_scope, &callbacks);
+    internal_scope_open = 1;
 }
+
+const neuv_callbacks *cli_callbacks(void) { return &callbacks; }
 
 void cli_progress_done(void)
 {
@@ -191,14 +212,13 @@ int cli_print_json(json_writer *w)
     return 0;
 }
 
-int cli_load_clean(const char *in, neuv_mesh **out, mesh_clean_report *report)
+int cli_load_clean(const char *in, neuv_mesh **out, neuv_clean_report *report)
 {
     *out = NULL;
     neuv_mesh *m = NULL;
-    neuv_status st = neuv_mesh_load(in, &m);
+    neuv_status st = neuv_mesh_load(in, cli_callbacks(), &m);
     if (st != NEUV_OK) return cli_fail(in, st);
-    if ((st = mesh_clean(m, NULL, report)) != NEUV_OK) { mesh_free(m); return cli_fail(in, st); }
-    if (m->nf == 0) { mesh_free(m); return cli_error(in, "no faces left after cleaning (every face was degenerate)"); }
+    if ((st = neuv_mesh_clean(m, report)) != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
     *out = m;
     return 0;
 }
@@ -224,11 +244,14 @@ int cli_parse_preset(const char *s, neuv_preset *out)
 
 int cli_write_text(const char *path, const char *text)
 {
-    atomic_file af;
-    neuv_status s = atomic_file_open(&af, path);
-    if (s != NEUV_OK) return cli_fail(path, s);
-    fputs(text, af.fp);
-    fputc('\n', af.fp);
-    s = atomic_file_commit(&af);
+    neuv_status s = neuv_save_text(path, text);
     return s == NEUV_OK ? 0 : cli_fail(path, s);
+}
+
+int cli_print_document(char *json)
+{
+    if (!json) { cli_error(NULL, "%s", neuv_last_error()); return 1; }
+    printf("%s\n", json);
+    neuv_free(json);
+    return 0;
 }

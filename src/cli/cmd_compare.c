@@ -26,7 +26,7 @@ int cmd_compare(int argc, char **argv)
     if (n != 2) return cli_error(NULL, "usage: neuv compare A_UV B_UV [--json]");
     neuv_mesh *m[2] = {NULL, NULL};
     for (int k = 0; k < 2; k++) {
-        neuv_status st = neuv_mesh_load(path[k], &m[k]);
+        neuv_status st = neuv_mesh_load(path[k], cli_callbacks(), &m[k]);
         if (st) { mesh_free(m[0]); return cli_fail(path[k], st); }
         if (m[k]->nf == 0) { mesh_free(m[0]); mesh_free(m[1]); return cli_error(path[k], "the mesh has no faces"); }
         if (m[k]->nuv == 0) { mesh_free(m[0]); mesh_free(m[1]); return cli_error(path[k], "the mesh has no UVs to compare"); }

@@ -25,7 +25,7 @@ int cmd_convert(int argc, char **argv)
     if (cli_check_output_not_input(out, in)) return 2;
 
     neuv_mesh *m = NULL;
-    neuv_status st = neuv_mesh_load(in, &m);
+    neuv_status st = neuv_mesh_load(in, cli_callbacks(), &m);
     if (st != NEUV_OK) return cli_fail(in, st);
     st = neuv_mesh_save(m, out);
     int rc = 0;

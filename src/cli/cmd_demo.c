@@ -5,11 +5,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "atlas/preview.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/unwrap_job.h"
-#include "mesh/shapes.h"
 
 int cmd_demo(int argc, char **argv)
 {
@@ -23,8 +21,9 @@ int cmd_demo(int argc, char **argv)
     if (bad) return 2;
     if (mkdir(dir, 0755) != 0 && errno != EEXIST) return cli_error(dir, "cannot create folder: %s", strerror(errno));
 
-    neuv_mesh *mesh = shape_bumpy_torus(1.0, 0.4, 0.25, 96, 40);
-    if (!mesh) return cli_error(NULL, "out of memory");
+    neuv_mesh *mesh = NULL;
+    neuv_status st = neuv_shape("bumpy-torus", -1, &mesh);
+    if (st != NEUV_OK) return cli_fail(NULL, st);
     char input[4096], output[4096], report[4096], preview[4096];
     snprintf(input, sizeof input, "%s/demo-input.obj", dir);
     snprintf(output, sizeof output, "%s/demo.obj", dir);
@@ -37,10 +36,10 @@ int cmd_demo(int argc, char **argv)
                neuv_mesh_face_count(mesh), input);
 
     neuv_unwrap_options o;
-    neuv_unwrap_options_default(&o);
+    neuv_unwrap_options_init(&o);
     o.threads = cli_opts.threads;
     unwrap_job job = {.input_name = input, .output = output, .report = report, .preview = preview,
-                      .preview_color = PREVIEW_COLOR_CHART};
+                      .preview_color = NEUV_PREVIEW_CHART};
     int rc = unwrap_job_run(mesh, &o, &job);
     neuv_mesh_free(mesh);
     if (rc == 0 && !cli_opts.quiet)

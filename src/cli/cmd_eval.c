@@ -4,12 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "atlas/preview.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "core/json_writer.h"
-#include "mesh/clean.h"
-#include "metrics/uv_metrics.h"
 
 static void print_number(const char *name, double x, const char *note)
 {
@@ -17,9 +13,9 @@ static void print_number(const char *name, double x, const char *note)
     else printf("  %-20s %-14.6g %s\n", name, x, note);
 }
 
-static void print_table(const char *path, const neuv_mesh *m, const uv_metrics *mt)
+static void print_table(const char *path, const neuv_mesh *m, const neuv_metrics *mt)
 {
-    printf("%s: %d vertices, %d faces\n", path, m->nv, m->nf);
+    printf("%s: %d vertices, %d faces\n", path, neuv_mesh_vertex_count(m), neuv_mesh_face_count(m));
     printf("  %-20s %-14d\n", "charts", mt->charts);
     print_number("qce_mean", mt->qce_mean, "ideal 1 (angle distortion s1/s2)");
     print_number("qce_p95", mt->qce_p95, "");
@@ -40,28 +36,16 @@ static void print_table(const char *path, const neuv_mesh *m, const uv_metrics *
         printf("  %-20s %-14d faces of (near) zero 3D area left out\n", "excluded_faces", mt->excluded_faces);
 }
 
-static int print_json(const char *path, const neuv_mesh *m, const uv_metrics *mt)
+static int print_json(const char *path, const neuv_mesh *m, const neuv_metrics *mt)
 {
-    json_writer w;
-    json_init(&w);
-    json_begin_object(&w);
-    json_key(&w, "version"); json_string(&w, neuv_version());
-    json_key(&w, "input"); json_string(&w, path);
-    json_key(&w, "vertices"); json_int(&w, m->nv);
-    json_key(&w, "faces"); json_int(&w, m->nf);
-    json_key(&w, "metrics");
-    json_begin_object(&w);
-    uv_metrics_write_json(mt, &w);
-    json_end_object(&w);
-    json_end_object(&w);
-    return cli_print_json(&w);
+    return cli_print_document(neuv_metrics_json(mt, m, path));
 }
 
-static int parse_color(const char *s, preview_color *out)
+static int parse_color(const char *s, neuv_preview_color *out)
 {
-    if (!strcmp(s, "chart")) *out = PREVIEW_COLOR_CHART;
-    else if (!strcmp(s, "qce")) *out = PREVIEW_COLOR_QCE;
-    else if (!strcmp(s, "area")) *out = PREVIEW_COLOR_AREA;
+    if (!strcmp(s, "chart")) *out = NEUV_PREVIEW_CHART;
+    else if (!strcmp(s, "qce")) *out = NEUV_PREVIEW_QCE;
+    else if (!strcmp(s, "area")) *out = NEUV_PREVIEW_AREA;
     else return cli_error(NULL, "--preview-color expects chart, qce or area, got '%s'", s);
     return 0;
 }
@@ -81,32 +65,29 @@ int cmd_eval(int argc, char **argv)
     }
     if (bad) return 2;
     if (!in) return cli_error(NULL, "usage: neuv eval IN_WITH_UV [--json] [--preview PREFIX] [--preview-color chart|qce|area]");
-    preview_color color = PREVIEW_COLOR_CHART;
+    neuv_preview_color color = NEUV_PREVIEW_CHART;
     if (parse_color(color_name, &color)) return 2;
 
     neuv_mesh *m = NULL;
-    neuv_status st = neuv_mesh_load(in, &m);
+    neuv_status st = neuv_mesh_load(in, cli_callbacks(), &m);
     if (st != NEUV_OK) return cli_fail(in, st);
-    if (m->nuv == 0) {
-        mesh_free(m);
+    if (!neuv_mesh_has_uv(m)) {
+        neuv_mesh_free(m);
         return cli_error(in, "no UVs: neuv eval needs a mesh that carries texture coordinates");
     }
     /* Seams are edges whose two sides disagree on UVs; that needs the two
      * sides to share vertex indices, which loaders that split vertices per
      * corner do not give. Nothing else is repaired: a metric must describe
      * the map as the file has it. */
-    if (mesh_weld_positions(m) < 0) {
-        mesh_free(m);
-        return cli_error(in, "out of memory welding vertices");
-    }
-    uv_metrics mt;
-    st = uv_metrics_compute(m, &mt);
-    if (st != NEUV_OK) { mesh_free(m); return cli_fail(in, st); }
+    neuv_metrics mt;
+    st = neuv_mesh_weld(m, NULL);
+    if (st == NEUV_OK) st = neuv_evaluate(m, &mt);
+    if (st != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
     int rc = json ? print_json(in, m, &mt) : (print_table(in, m, &mt), 0);
     if (rc == 0 && preview) {
-        st = preview_write(m, preview, color);
+        st = neuv_write_preview(m, preview, color);
         if (st != NEUV_OK) rc = cli_fail(preview, st);
     }
-    mesh_free(m);
+    neuv_mesh_free(m);
     return rc;
 }

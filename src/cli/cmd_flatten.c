@@ -54,7 +54,7 @@ int cmd_flatten(int argc, char **argv)
 
     double t0 = now_seconds();
     neuv_mesh *m = NULL;
-    mesh_clean_report rep;
+    neuv_clean_report rep;
     int rc = cli_load_clean(in, &m, &rep);
     if (rc) return rc;
     neuv_status st;

@@ -67,7 +67,7 @@ int cmd_geodesics(int argc, char **argv)
 
     double t0 = now_seconds();
     neuv_mesh *orig = NULL;
-    neuv_status st = neuv_mesh_load(in, &orig);
+    neuv_status st = neuv_mesh_load(in, cli_callbacks(), &orig);
     if (st) return cli_fail(in, st);
     if (from < 0 || from >= orig->nv) {
         int nv = orig->nv;

@@ -116,7 +116,7 @@ int cmd_info(int argc, char **argv)
     if (!in) return cli_error(NULL, "usage: neuv info IN [--json]");
 
     neuv_mesh *m = NULL;
-    neuv_status st = neuv_mesh_load(in, &m);
+    neuv_status st = neuv_mesh_load(in, cli_callbacks(), &m);
     if (st != NEUV_OK) return cli_fail(in, st);
     int in_nv = m->nv, in_nf = m->nf;
     mesh_clean_report rep;

@@ -115,7 +115,7 @@ int cmd_operators(int argc, char **argv)
     r.path = in;
     double t0 = now_seconds();
     neuv_mesh *m = NULL;
-    neuv_status st = neuv_mesh_load(in, &m);
+    neuv_status st = neuv_mesh_load(in, cli_callbacks(), &m);
     if (st != NEUV_OK) return cli_fail(in, st);
     r.load_s = now_seconds() - t0;
     r.nv_in = m->nv;

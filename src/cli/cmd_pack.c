@@ -7,14 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atlas/pack.h"
-#include "atlas/preview.h"
-#include "atlas/uv_charts.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "core/timer.h"
-#include "mesh/clean.h"
-#include "metrics/uv_metrics.h"
 
 static const char *pack_usage =
     "usage: neuv pack IN_WITH_UV -o OUT [--resolution PX] [--padding PX] [--keep-scale] "
@@ -29,8 +23,8 @@ static void print_efficiency(const char *when, double e)
 int cmd_pack(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *preview = NULL, *color_name = "chart";
-    atlas_pack_options opt;
-    atlas_pack_options_default(&opt);
+    neuv_pack_options opt;
+    neuv_pack_options_init(&opt);
     int bad = 0;
     for (int i = 1; i < argc && !bad; i++) {
         if (cli_arg_global(argc, argv, &i, &bad)) continue;
@@ -51,57 +45,51 @@ int cmd_pack(int argc, char **argv)
     if (opt.padding < 0 || 2 * opt.padding + 1 > opt.resolution)
         return cli_error(NULL, "--padding must be between 0 and %d px for a %d px atlas, got %d",
                          (opt.resolution - 1) / 2, opt.resolution, opt.padding);
-    preview_color color = PREVIEW_COLOR_CHART;
-    if (!strcmp(color_name, "qce")) color = PREVIEW_COLOR_QCE;
-    else if (!strcmp(color_name, "area")) color = PREVIEW_COLOR_AREA;
+    neuv_preview_color color = NEUV_PREVIEW_CHART;
+    if (!strcmp(color_name, "qce")) color = NEUV_PREVIEW_QCE;
+    else if (!strcmp(color_name, "area")) color = NEUV_PREVIEW_AREA;
     else if (strcmp(color_name, "chart")) return cli_error(NULL, "--preview-color expects chart, qce or area, got '%s'", color_name);
     if (cli_check_output_not_input(out, in)) return 2;
 
-    double t0 = now_seconds();
+    double t0 = cli_now_seconds();
     neuv_mesh *m = NULL;
-    neuv_status st = neuv_mesh_load(in, &m);
+    neuv_status st = neuv_mesh_load(in, cli_callbacks(), &m);
     if (st != NEUV_OK) return cli_fail(in, st);
-    if (m->nuv == 0) {
-        mesh_free(m);
+    if (!neuv_mesh_has_uv(m)) {
+        neuv_mesh_free(m);
         return cli_error(in, "no UVs: neuv pack repacks the charts of a mesh that carries texture coordinates");
     }
     /* Charts are found across shared edges, which needs shared vertex indices;
      * welding only merges identical positions, so positions are written back
      * exactly as read. */
-    if (mesh_weld_positions(m) < 0) { mesh_free(m); return cli_error(in, "out of memory welding vertices"); }
-    int *chart = malloc(sizeof *chart * (size_t)(m->nf > 0 ? m->nf : 1));
-    int nc = chart ? uv_charts(m, chart) : -1;
-    if (nc < 0) { free(chart); mesh_free(m); return cli_error(in, "out of memory finding charts"); }
-    uv_metrics before, after;
-    st = uv_metrics_compute(m, &before);
-    if (st != NEUV_OK) { free(chart); mesh_free(m); return cli_fail(in, st); }
-
-    double t1 = now_seconds();
-    atlas_pack_result res;
-    st = atlas_pack(m, chart, nc, &opt, NULL, &res);
-    double t2 = now_seconds();
-    free(chart);
-    if (st != NEUV_OK) { mesh_free(m); return cli_fail(in, st); }
-    st = uv_metrics_compute(m, &after);
-    if (st != NEUV_OK) { mesh_free(m); return cli_fail(in, st); }
+    neuv_metrics before, after;
+    st = neuv_mesh_weld(m, NULL);
+    if (st == NEUV_OK) st = neuv_evaluate(m, &before);
+    if (st != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
+    double t1 = cli_now_seconds();
+    neuv_pack_report res;
+    st = neuv_pack_uvs(m, &opt, &res);
+    double t2 = cli_now_seconds();
+    if (st == NEUV_OK) st = neuv_evaluate(m, &after);
+    if (st != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
     st = neuv_mesh_save(m, out);
-    if (st != NEUV_OK) { mesh_free(m); return cli_fail(out, st); }
+    if (st != NEUV_OK) { neuv_mesh_free(m); return cli_fail(out, st); }
 
     if (!cli_opts.quiet) {
-        printf("%s: %d charts packed into %d px with %d px padding%s in %.2f s (%d tries)\n", in, nc,
+        printf("%s: %d charts packed into %d px with %d px padding%s in %.2f s (%d tries)\n", in, res.charts,
                opt.resolution, opt.padding, opt.keep_scale ? ", relative scales kept" : "", t2 - t1, res.attempts);
         print_efficiency("before", before.packing_efficiency);
         print_efficiency("after", after.packing_efficiency);
         printf("  qce_mean before %.6f after %.6f\n", before.qce_mean, after.qce_mean);
         printf("  texel density %.2f px per unit length; wrote %s (%.2f s total)\n", res.texel_scale, out,
-               now_seconds() - t0);
+               cli_now_seconds() - t0);
     }
     int rc = 0;
     if (preview) {
-        st = preview_write(m, preview, color);
+        st = neuv_write_preview(m, preview, color);
         if (st != NEUV_OK) rc = cli_fail(preview, st);
         else if (!cli_opts.quiet) printf("  wrote %s-uv.png and %s-checker.png\n", preview, preview);
     }
-    mesh_free(m);
+    neuv_mesh_free(m);
     return rc;
 }

@@ -71,7 +71,7 @@ int cmd_segment(int argc, char **argv)
 
     double t0 = now_seconds();
     neuv_mesh *m = NULL;
-    mesh_clean_report crep;
+    neuv_clean_report crep;
     int rc = cli_load_clean(in, &m, &crep);
     if (rc) return rc;
     neuv_status st;

@@ -5,8 +5,6 @@
 
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "core/json_writer.h"
-#include "unwrap/unwrap_category.h"
 
 static const char *usage_text =
     "usage: neuv train -o M.neuv IN... [--charts auto|K] [--max-distortion X] [--preset fast|paper]\n"
@@ -15,37 +13,10 @@ static const char *usage_text =
     "  trains PatchNet and the parameterization networks on all inputs at once (a category\n"
     "  model); `neuv unwrap --model M.neuv NEW` then unwraps an unseen shape by inference\n";
 
-static char *report_json(const category_train_report *r, const char *model)
-{
-    json_writer w;
-    json_init(&w);
-    json_begin_object(&w);
-    json_key(&w, "model"); json_string(&w, model);
-    json_key(&w, "shapes"); json_int(&w, r->shapes);
-    json_key(&w, "faces"); json_int(&w, r->faces);
-    json_key(&w, "charts"); json_int(&w, r->charts);
-    json_key(&w, "patchnet_k"); json_int(&w, r->patch_k);
-    json_key(&w, "patchnet_iterations"); json_int(&w, r->patch_iterations);
-    json_key(&w, "patchnet_loss"); json_number(&w, r->patch_loss);
-    json_key(&w, "param_iterations"); json_int(&w, r->param_iterations);
-    json_key(&w, "param_loss"); json_number(&w, r->param_loss);
-    json_key(&w, "seconds");
-    json_begin_object(&w);
-    json_key(&w, "operators"); json_number(&w, r->seconds_operators);
-    json_key(&w, "patches"); json_number(&w, r->seconds_patches);
-    json_key(&w, "charts"); json_number(&w, r->seconds_charts);
-    json_key(&w, "param"); json_number(&w, r->seconds_param);
-    json_key(&w, "total"); json_number(&w, r->seconds);
-    json_end_object(&w);
-    json_end_object(&w);
-    if (w.failed) { json_free(&w); return NULL; }
-    return w.buf;
-}
-
 int cmd_train(int argc, char **argv)
 {
     neuv_unwrap_options o;
-    neuv_unwrap_options_default(&o);
+    neuv_unwrap_options_init(&o);
     const char *out = NULL, *charts = NULL, *preset = NULL, *report = NULL;
     int seed = -1, refine = -1, patch_iters = 0, bad = 0, n = 0;
     const char **inputs = calloc((size_t)argc, sizeof *inputs);
@@ -94,22 +65,23 @@ int cmd_train(int argc, char **argv)
     neuv_mesh **meshes = calloc((size_t)n, sizeof *meshes);
     if (!meshes) { free(inputs); return cli_error(NULL, "out of memory"); }
     for (int i = 0; !rc && i < n; i++) {
-        neuv_status s = neuv_mesh_load(inputs[i], &meshes[i]);
+        neuv_status s = neuv_mesh_load(inputs[i], cli_callbacks(), &meshes[i]);
         if (s != NEUV_OK) rc = cli_fail(inputs[i], s);
     }
-    unwrap_model *md = NULL;
-    category_train_report rep;
+    neuv_model *md = NULL;
+    neuv_train_report rep;
     if (!rc) {
-        neuv_status s = unwrap_category_train((const neuv_mesh *const *)meshes, n, &o, patch_iters, &md, &rep);
+        neuv_status s = neuv_train_category((const neuv_mesh *const *)meshes, n, &o, patch_iters, cli_callbacks(),
+                                            &md, &rep);
         if (s != NEUV_OK) rc = cli_fail(n == 1 ? inputs[0] : "train", s);
     }
     char *json = NULL;
     if (!rc && report) {
-        json = report_json(&rep, out);
+        json = neuv_train_report_json(&rep, out);
         if (!json) rc = cli_error(NULL, "out of memory writing the report");
     }
     if (!rc) {
-        neuv_status s = unwrap_model_save(md, out);
+        neuv_status s = neuv_model_save(md, out);
         if (s != NEUV_OK) rc = cli_fail(out, s);
     }
     if (!rc && json) rc = cli_write_text(report, json);
@@ -117,8 +89,8 @@ int cmd_train(int argc, char **argv)
         printf("trained on %d shapes (%d faces, %d charts): PatchNet K %d, %d steps; networks %d steps, "
                "%.1f s -> %s\n", rep.shapes, rep.faces, rep.charts, rep.patch_k, rep.patch_iterations,
                rep.param_iterations, rep.seconds, out);
-    free(json);
-    unwrap_model_free(md);
+    neuv_free(json);
+    neuv_model_free(md);
     for (int i = 0; i < n; i++) neuv_mesh_free(meshes[i]);
     free(meshes);
     free(inputs);

@@ -3,11 +3,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atlas/preview.h"
 #include "cli/cli.h"
 #include "cli/commands.h"
 #include "cli/unwrap_job.h"
-#include "core/timer.h"
 
 static const char *usage_text =
     "usage: neuv unwrap IN [-o OUT] [--report R.json] [--preview PREFIX] [--preview-color chart|qce|area]\n"
@@ -39,9 +37,9 @@ static char *default_output(const char *in)
 
 int parse_preview_color(const char *s, int *out)
 {
-    if (!strcmp(s, "chart")) *out = PREVIEW_COLOR_CHART;
-    else if (!strcmp(s, "qce")) *out = PREVIEW_COLOR_QCE;
-    else if (!strcmp(s, "area")) *out = PREVIEW_COLOR_AREA;
+    if (!strcmp(s, "chart")) *out = NEUV_PREVIEW_CHART;
+    else if (!strcmp(s, "qce")) *out = NEUV_PREVIEW_QCE;
+    else if (!strcmp(s, "area")) *out = NEUV_PREVIEW_AREA;
     else return cli_error(NULL, "--preview-color expects chart, qce or area, got '%s'", s);
     return 0;
 }
@@ -49,7 +47,7 @@ int parse_preview_color(const char *s, int *out)
 int cmd_unwrap(int argc, char **argv)
 {
     neuv_unwrap_options o;
-    neuv_unwrap_options_default(&o);
+    neuv_unwrap_options_init(&o);
     unwrap_job job = {0};
     const char *in = NULL, *method = NULL, *charts = NULL, *preset = NULL, *color = NULL;
     int seed = -1, bad = 0, finetune = 0, refine = -1;
@@ -133,12 +131,12 @@ int cmd_unwrap(int argc, char **argv)
     if (rc == 0 && job.save_model) rc = cli_check_output_folder(job.save_model);
     if (rc) { free(owned_output); return rc; }
 
-    double t = now_seconds();
+    double t = cli_now_seconds();
     neuv_mesh *mesh = NULL;
-    neuv_status s = neuv_mesh_load(in, &mesh);
+    neuv_status s = neuv_mesh_load(in, cli_callbacks(), &mesh);
     if (s != NEUV_OK) { free(owned_output); return cli_fail(in, s); }
     job.input_name = in;
-    job.load_seconds = now_seconds() - t;
+    job.load_seconds = cli_now_seconds() - t;
     rc = unwrap_job_run(mesh, &o, &job);
     neuv_mesh_free(mesh);
     free(owned_output);

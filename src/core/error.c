@@ -19,6 +19,11 @@ neuv_status error_nomem(const char *what)
     return error_set(NEUV_ERR_NOMEM, "out of memory allocating %s", what);
 }
 
+neuv_status error_cancelled(void)
+{
+    return error_set(NEUV_ERR_CANCELLED, "cancelled: the progress callback returned 0");
+}
+
 void error_clear(void) { last_error[0] = '\0'; }
 
 const char *neuv_last_error(void) { return last_error; }
@@ -31,6 +36,7 @@ const char *neuv_status_name(neuv_status status)
     case NEUV_ERR_INPUT: return "bad input";
     case NEUV_ERR_IO: return "input/output error";
     case NEUV_ERR_NOMEM: return "out of memory";
+    case NEUV_ERR_CANCELLED: return "cancelled";
     }
     return "unknown status";
 }
@@ -41,7 +47,8 @@ int neuv_exit_code(neuv_status status)
     case NEUV_OK: return 0;
     case NEUV_ERR_INPUT:
     case NEUV_ERR_IO:
-    case NEUV_ERR_NOMEM: return 2;
+    case NEUV_ERR_NOMEM:
+    case NEUV_ERR_CANCELLED: return 2;
     default: return 1;
     }
 }

@@ -10,6 +10,9 @@ neuv_status error_set(neuv_status code, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 /* Shorthand for an allocation failure of `what`. */
 neuv_status error_nomem(const char *what);
+/* NEUV_ERR_CANCELLED with its message, for a stage that stops because the
+ * progress callback asked it to (core/log.h log_cancelled). */
+neuv_status error_cancelled(void);
 void error_clear(void);
 
 #endif

@@ -410,8 +410,9 @@ neuv_status uv_refine(const neuv_mesh *m, const int *face_chart, int n_charts, c
         for (int i = 0; i < d.nv; i++)
             if (pinned[i]) { uv->data[2 * i] = snap[2 * i]; uv->data[2 * i + 1] = snap[2 * i + 1]; }
         rep->iters = it + 1;
-        if (it % 50 == 0 || it == o->iters - 1)
-            log_progress("refine", (double)(it + 1) / o->iters, "step %d loss %.5f", it + 1, rep->loss_end);
+        if ((it % 50 == 0 || it == o->iters - 1) &&
+            log_progress("refine", (double)(it + 1) / o->iters, "step %d loss %.5f", it + 1, rep->loss_end))
+            { s = error_cancelled(); goto done; }
         if (!o->accept || ((it + 1) % o->check_every != 0 && it != o->iters - 1)) continue;
         for (int c = 0; c < n_charts; c++) {
             if (fails[c] == FROZEN) continue;

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/log.h"
 
 /* Lower-cased extension with its dot (".obj"), "" when there is none. */
 static void extension_of(const char *path, char ext[16])
@@ -66,9 +67,8 @@ static mesh_format input_format(const char *ext)
     return FMT_UNKNOWN;
 }
 
-neuv_status neuv_mesh_load(const char *path, neuv_mesh **out)
+static neuv_status mesh_load(const char *path, neuv_mesh **out)
 {
-    if (!out) return error_set(NEUV_ERR_INTERNAL, "neuv_mesh_load: no output pointer");
     *out = NULL;
     if (!path || !*path) return error_set(NEUV_ERR_INPUT, "no file name given");
     struct stat st;
@@ -103,6 +103,16 @@ neuv_status neuv_mesh_load(const char *path, neuv_mesh **out)
         s = fmt == FMT_OBJ ? io_read_obj(data, len, out) : io_read_off(data, len, out);
     }
     free(data);
+    return s;
+}
+
+neuv_status neuv_mesh_load(const char *path, const neuv_callbacks *cb, neuv_mesh **out)
+{
+    if (!out) return error_set(NEUV_ERR_INPUT, "neuv_mesh_load: no output pointer");
+    log_scope scope;
+    log_scope_open(&scope, cb);
+    neuv_status s = mesh_load(path, out);
+    log_scope_close(&scope);
     return s;
 }
 

@@ -819,8 +819,9 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         rep->loss_angle = lang->data[0]; rep->loss_area = lar->data[0];
         rep->loss_barrier = lfold ? lfold->data[0] : 0;
         rep->loss_warm = lwarm ? lwarm->data[0] : 0;
-        if (it % 10 == 0 || it == o->iters - 1)
-            log_progress("param", (double)(it + 1) / o->iters, "iter %d loss %.5f", it + 1, rep->loss);
+        if ((it % 10 == 0 || it == o->iters - 1) &&
+            log_progress("param", (double)(it + 1) / o->iters, "iter %d loss %.5f", it + 1, rep->loss))
+            { s = error_cancelled(); goto done; }
         /* Plateau: the mean loss of a window improved by less than plateau_tol on the
          * previous one. The angle/area weights change at warm-up, so windows restart there. */
         if ((it == o->warmup_iters && o->warmup_iters > 0) || (it == o->warm_iters && o->warm_iters > 0)) {

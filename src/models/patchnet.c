@@ -280,8 +280,9 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
         hist[it] = L->data[0];
         lc = Lc->data[0];
         lg = Lg->data[0];
-        if (it % 10 == 0 || it == iters - 1)
-            log_progress("patches", (double)(it + 1) / iters, "iter %d loss %.4f", it + 1, hist[it]);
+        if ((it % 10 == 0 || it == iters - 1) &&
+            log_progress("patches", (double)(it + 1) / iters, "iter %d loss %.4f", it + 1, hist[it]))
+            { st = error_cancelled(); goto done; }
         /* Plateau: the mean of the last W losses improves on the W before by
          * less than plateau_tol of the earlier mean. */
         if (it + 1 >= 2 * W) {

@@ -241,6 +241,5 @@ const char *nn_op_name(nn_op op);
  * libgomp's pool spin-wait and steal each other's cores when they alternate.
  * OpenBLAS's thread count still applies to BLAS calls made outside nn. */
 void nn_set_threads(int n);
-int nn_get_threads(void);
 
 #endif

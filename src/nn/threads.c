@@ -4,14 +4,12 @@
 #include <cblas.h>
 #include <omp.h>
 
-static int nn_threads;
-
+/* OpenMP keeps the thread count per calling thread, so two unwraps on two
+ * threads each keep their own; OpenBLAS's count is process-wide. */
 void nn_set_threads(int n)
 {
     if (n <= 0) n = omp_get_num_procs();
-    nn_threads = n;
     omp_set_num_threads(n);
     openblas_set_num_threads(n);
 }
 
-int nn_get_threads(void) { return nn_threads > 0 ? nn_threads : omp_get_max_threads(); }

@@ -24,7 +24,7 @@
 #include "unwrap/chart_uv_check.h"
 #include "unwrap/unwrap_model.h"
 
-void neuv_unwrap_options_default(neuv_unwrap_options *o)
+void neuv_unwrap_options_init(neuv_unwrap_options *o)
 {
     memset(o, 0, sizeof *o);
     o->method = NEUV_METHOD_NEURAL;
@@ -397,15 +397,21 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
     return NEUV_OK;
 }
 
-/* category: a category model (unwrap_category.h) whose PatchNet and
- * parameterization networks replace training (finetune > 0: the networks
- * train that many steps from the model's weights); NULL: train on this mesh. */
-static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model,
-                                const unwrap_model *category, int finetune)
+static double stage_total(const struct neuv_unwrap_result *r)
+{
+    double t = 0;
+    for (int i = 0; i < STAGE_COUNT; i++) t += r->seconds[i];
+    return t;
+}
+
+neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model,
+                                const unwrap_model *category, float **features_out, int *feature_dim_out)
 {
     const neuv_unwrap_options *o = &r->opts;
-    double t = now_seconds(), t_start = t;
+    double t = now_seconds();
     neuv_status s;
+    *features_out = NULL;
+    *feature_dim_out = 0;
 
     neuv_mesh *m = mesh_clone(in);
     if (!m) return error_nomem("the mesh");
@@ -417,6 +423,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     if (m->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
     if (!(mesh_total_area(m) > 0)) return error_set(NEUV_ERR_INPUT, "the mesh has zero area");
     r->seconds[STAGE_CLEAN] = now_seconds() - t;
+    if (log_cancelled()) return error_cancelled();
 
     t = now_seconds();
     log_progress("operators", 0, NULL);
@@ -426,6 +433,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     s = operators_get(m, &op, o->use_cache, &ops, NULL, &r->cache_hit);
     r->seconds[STAGE_OPERATORS] = now_seconds() - t;
     if (s != NEUV_OK) return s;
+    if (log_cancelled()) { operators_free(&ops); return error_cancelled(); }
 
     t = now_seconds();
     r->face_chart = malloc(sizeof(int) * (size_t)m->nf);
@@ -464,13 +472,26 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     r->patches = prep.k;
     r->patch_iterations = prep.iterations;
     r->patch_iters_per_second = prep.iters_per_second;
+    r->total_seconds = stage_total(r);
+    if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
     if (s != NEUV_OK) { free(features); return s; }
+    *features_out = features;
+    *feature_dim_out = feature_dim;
+    return NEUV_OK;
+}
 
+neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, int keep_model, const unwrap_model *category,
+                               int finetune, const float *features, int feature_dim)
+{
+    const neuv_unwrap_options *o = &r->opts;
+    neuv_mesh *m = r->mesh;
+    neuv_status s = NEUV_OK;
     double *corner_uv = NULL;
-    t = now_seconds();
+    double t = now_seconds();
+    r->refine_seconds = 0;
     if (o->method == NEUV_METHOD_NEURAL) {
         corner_uv = malloc(sizeof(double) * 6 * (size_t)m->nf);
-        if (!corner_uv) { free(features); return error_nomem("UVs"); }
+        if (!corner_uv) return error_nomem("UVs");
         param_net_options pp;
         param_net_default_options(&pp, o->preset == NEUV_PRESET_PAPER ? PARAM_PRESET_PAPER : PARAM_PRESET_FAST);
         pp.seed = o->seed;
@@ -479,7 +500,8 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
         param_net_report pr;
         memset(&pr, 0, sizeof pr);
         if (category && finetune == 0) {
-            s = param_net_infer(category->param, m, r->face_chart, r->n_charts, features, feature_dim, !r->model.shared_layer, corner_uv, &pr);
+            s = param_net_infer(category->param, m, r->face_chart, r->n_charts, features, feature_dim,
+                                !r->model.shared_layer, corner_uv, &pr);
         } else {
             if (category) { /* fine-tuning: the model's networks, trained `finetune` more steps */
                 pp.width = category->param->f.width;
@@ -493,8 +515,8 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
         r->param_loss = pr.loss;
         r->param = pr.model;
     }
-    free(features);
     r->seconds[STAGE_PARAM] = now_seconds() - t;
+    if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
     if (s != NEUV_OK) { free(corner_uv); return s; }
 
     t = now_seconds();
@@ -518,11 +540,20 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     /* The refinement ran chart by chart in the repair loop; it belongs to the parameterization. */
     r->seconds[STAGE_REPAIR] = now_seconds() - t - r->refine_seconds;
     r->seconds[STAGE_PARAM] += r->refine_seconds;
-    if (s != NEUV_OK) return s;
+    r->total_seconds = stage_total(r);
+    if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
+    return s;
+}
 
-    t = now_seconds();
+neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r)
+{
+    const neuv_unwrap_options *o = &r->opts;
+    neuv_mesh *m = r->mesh;
+    neuv_status s;
+    double t = now_seconds();
     log_progress("pack", 0, "%d charts", r->n_charts);
     if ((s = split_for_packing(r, m)) != NEUV_OK) return s;
+    free(r->transforms);
     r->transforms = calloc((size_t)r->n_charts, sizeof *r->transforms);
     if (!r->transforms) return error_nomem("chart transforms");
     atlas_pack_options pk;
@@ -537,8 +568,74 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     t = now_seconds();
     s = unwrap_metrics(m, &r->metrics);
     r->seconds[STAGE_METRICS] = now_seconds() - t;
-    r->total_seconds = now_seconds() - t_start;
+    r->total_seconds = stage_total(r);
     return s;
+}
+
+/* category: a category model (unwrap_category.h) whose PatchNet and
+ * parameterization networks replace training (finetune > 0: the networks
+ * train that many steps from the model's weights); NULL: train on this mesh. */
+static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model,
+                                const unwrap_model *category, int finetune)
+{
+    float *features = NULL;
+    int feature_dim = 0;
+    neuv_status s = unwrap_stage_charts(r, in, keep_model, category, &features, &feature_dim);
+    if (s == NEUV_OK) s = unwrap_stage_param(r, keep_model, category, finetune, features, feature_dim);
+    free(features);
+    if (s == NEUV_OK) s = unwrap_stage_pack(r);
+    return s;
+}
+
+static void *copy_block(const void *src, size_t bytes, int *failed)
+{
+    if (!src) return NULL;
+    void *d = malloc(bytes ? bytes : 1);
+    if (!d) { *failed = 1; return NULL; }
+    memcpy(d, src, bytes);
+    return d;
+}
+
+neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_unwrap_result **out)
+{
+    *out = NULL;
+    struct neuv_unwrap_result *c = calloc(1, sizeof *c);
+    if (!c) return error_nomem("the result");
+    *c = *r;
+    c->chart_net = c->chart_mirrored = c->face_label = NULL;
+    c->patchnet = NULL;
+    c->param = NULL;
+    int failed = 0;
+    size_t nc = (size_t)r->n_charts;
+    c->mesh = r->mesh ? mesh_clone(r->mesh) : NULL;
+    if (r->mesh && !c->mesh) failed = 1;
+    c->face_chart = copy_block(r->face_chart, sizeof(int) * (size_t)(r->mesh ? r->mesh->nf : 0), &failed);
+    c->chart_source = copy_block(r->chart_source, sizeof(int) * nc, &failed);
+    c->chart_net_qce = copy_block(r->chart_net_qce, sizeof(double) * nc, &failed);
+    c->chart_lscm_qce = copy_block(r->chart_lscm_qce, sizeof(double) * nc, &failed);
+    c->transforms = copy_block(r->transforms, sizeof *r->transforms * nc, &failed);
+    c->repairs = copy_block(r->repairs, sizeof *r->repairs * (size_t)r->n_repairs, &failed);
+    c->cap_repairs = c->repairs ? r->n_repairs : 0;
+    if (failed) { neuv_unwrap_result_free(c); return error_nomem("a copy of the result"); }
+    *out = c;
+    return NEUV_OK;
+}
+
+neuv_status unwrap_result_new(const neuv_unwrap_options *opts, struct neuv_unwrap_result **out)
+{
+    *out = NULL;
+    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
+    if (!r) return error_nomem("the result");
+    if (opts) r->opts = *opts;
+    else neuv_unwrap_options_init(&r->opts);
+    if (r->opts.resolution < 64 || r->opts.resolution > 16384)
+        { free(r); return error_set(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
+    if (r->opts.padding < 0 || r->opts.padding > r->opts.resolution / 8)
+        { free(r); return error_set(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
+    if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
+    r->model.label_agreement = -1;
+    *out = r;
+    return NEUV_OK;
 }
 
 neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts, int keep_model,
@@ -546,17 +643,10 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
 {
     *out = NULL;
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
-    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
-    if (!r) return error_nomem("the result");
-    if (opts) r->opts = *opts;
-    else neuv_unwrap_options_default(&r->opts);
-    if (r->opts.resolution < 64 || r->opts.resolution > 16384)
-        { free(r); return error_set(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
-    if (r->opts.padding < 0 || r->opts.padding > r->opts.resolution / 8)
-        { free(r); return error_set(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
-    if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
-    r->model.label_agreement = -1;
-    neuv_status s = run_pipeline(r, mesh, keep_model, NULL, 0);
+    struct neuv_unwrap_result *r = NULL;
+    neuv_status s = unwrap_result_new(opts, &r);
+    if (s != NEUV_OK) return s;
+    s = run_pipeline(r, mesh, keep_model, NULL, 0);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     *out = r;
     return NEUV_OK;
@@ -571,7 +661,7 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
         return error_set(NEUV_ERR_INPUT, "not a category model");
     struct neuv_unwrap_result *r = calloc(1, sizeof *r);
     if (!r) return error_nomem("the result");
-    neuv_unwrap_options_default(&r->opts);
+    neuv_unwrap_options_init(&r->opts);
     r->opts.method = NEUV_METHOD_NEURAL;
     r->opts.preset = category->preset;
     r->opts.seed = category->seed;
@@ -596,11 +686,6 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
     r->model.inference_seconds = r->total_seconds - r->seconds[STAGE_METRICS];
     *out = r;
     return NEUV_OK;
-}
-
-neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, neuv_unwrap_result **out)
-{
-    return unwrap_train(mesh, opts, 0, out);
 }
 
 const neuv_mesh *neuv_unwrap_mesh(const neuv_unwrap_result *r) { return r ? r->mesh : NULL; }

@@ -1203,7 +1203,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
 
 static void opts_from_model(neuv_unwrap_options *opts, const unwrap_model *md)
 {
-    neuv_unwrap_options_default(opts);
+    neuv_unwrap_options_init(opts);
     opts->method = md->method;
     opts->preset = md->preset;
     opts->seed = md->seed;

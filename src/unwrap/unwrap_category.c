@@ -91,7 +91,7 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     memset(rep, 0, sizeof *rep);
     neuv_unwrap_options o;
     if (opts) o = *opts;
-    else neuv_unwrap_options_default(&o);
+    else neuv_unwrap_options_init(&o);
     if (n < 1 || !meshes) return error_set(NEUV_ERR_INPUT, "a category model needs at least one shape");
     if (o.method != NEUV_METHOD_NEURAL)
         return error_set(NEUV_ERR_INPUT, "a category model is made of networks: the method must be neural");

@@ -88,6 +88,23 @@ struct neuv_unwrap_result {
     } model;
 };
 
+/* Per chart of the final atlas: faces, 3D area and area-weighted qce
+ * (docs/metrics.md; faces of zero area left out), from r->mesh's UVs.
+ * NULL when memory runs out; caller frees. */
+typedef struct unwrap_chart_figures { int faces; double area, qce_num, qce_den; } unwrap_chart_figures;
+unwrap_chart_figures *unwrap_chart_figures_compute(const struct neuv_unwrap_result *r);
+
+/* Charts and 3D area per source, the share of area the networks mapped
+ * injectively, their own qce_mean there and LSCM's on the same charts (NaN
+ * when not measured), from r's provenance arrays (which must be set). */
+typedef struct unwrap_provenance {
+    int count[CHART_SOURCE_COUNT];
+    double area[CHART_SOURCE_COUNT];
+    double total_area, network_area_fraction, network_qce_mean, lscm_qce_mean_same_charts;
+} unwrap_provenance;
+void unwrap_provenance_compute(const struct neuv_unwrap_result *r, const unwrap_chart_figures *cf,
+                               unwrap_provenance *out);
+
 /* "11 network+refined, 3 lscm_after_fold": how many charts each source made. */
 void unwrap_source_summary(const struct neuv_unwrap_result *r, char *buf, size_t n);
 
@@ -137,6 +154,32 @@ neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_c
 /* The metrics of m as `neuv eval` reads the written file (positions welded). */
 neuv_status unwrap_metrics(const neuv_mesh *m, uv_metrics *out);
 
+/* A result with opts (NULL: defaults) checked (resolution, padding) and
+ * the thread count set. NEUV_ERR_INPUT with the option at fault. */
+neuv_status unwrap_result_new(const neuv_unwrap_options *opts, struct neuv_unwrap_result **out);
+/* A deep copy of r without its networks (chart_net, chart_mirrored,
+ * face_label, patchnet and param left NULL), to run a stage again from. */
+neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_unwrap_result **out);
+
+/* The stages of the pipeline, in order, on one result (from
+ * unwrap_result_new), each timed into r->seconds and r->total_seconds, each
+ * stopping with NEUV_ERR_CANCELLED when the progress callback asks.
+ * charts: cleans a copy of `in` into r->mesh, operators, PatchNet's charts
+ *   (category: the model's PatchNet by inference); *features (#F by
+ *   *feature_dim DiffusionNet features, caller frees) for the next stage.
+ * param: the networks' map (or the classic method), repair, refinement;
+ *   per-corner chart UVs in r->mesh. category with finetune: that many
+ *   steps from the model's weights.
+ * pack: charts split where they pack badly, packing, metrics.
+ * keep_model: also keep what a saved model needs (chart_net,
+ * chart_mirrored, face_label, patchnet, param). */
+struct unwrap_model;
+neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model,
+                                const struct unwrap_model *category, float **features, int *feature_dim);
+neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, int keep_model, const struct unwrap_model *category,
+                               int finetune, const float *features, int feature_dim);
+neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r);
+
 /* The pipeline; keep_model: also keep the networks and per-chart maps
  * (chart_net, chart_mirrored, face_label, patchnet, param) for a saved model. */
 neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts, int keep_model,
@@ -150,7 +193,6 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
  * refinement, packing and metrics.
  * Preset, seed, refinement, resolution and padding come from the model;
  * threads, use_cache and allow_overlaps from opts (may be NULL). */
-struct unwrap_model;
 neuv_status unwrap_with_category(const neuv_mesh *mesh, const struct unwrap_model *category,
                                  const neuv_unwrap_options *opts, int finetune, int shared_layer,
                                  neuv_unwrap_result **out);

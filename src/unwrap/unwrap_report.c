@@ -32,15 +32,11 @@ static void write_cleaning(json_writer *w, const mesh_clean_report *c)
     json_end_object(w);
 }
 
-/* Per chart of the final atlas: faces, 3D area and area-weighted qce
- * (docs/metrics.md; faces of zero area left out), from r->mesh's UVs. */
-typedef struct chart_figures { int faces; double area, qce_num, qce_den; } chart_figures;
-
-static chart_figures *chart_figures_compute(const struct neuv_unwrap_result *r)
+unwrap_chart_figures *unwrap_chart_figures_compute(const struct neuv_unwrap_result *r)
 {
     const neuv_mesh *m = r->mesh;
-    chart_figures *cf = calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *cf);
-    if (!cf || !m->tri_uv || !r->face_chart) return cf;
+    unwrap_chart_figures *cf = calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *cf);
+    if (!cf || !m || !m->tri_uv || !r->face_chart) return cf;
     for (int f = 0; f < m->nf; f++) {
         int c = r->face_chart[f];
         if (c < 0 || c >= r->n_charts) continue;
@@ -60,6 +56,30 @@ static chart_figures *chart_figures_compute(const struct neuv_unwrap_result *r)
     return cf;
 }
 
+void unwrap_provenance_compute(const struct neuv_unwrap_result *r, const unwrap_chart_figures *cf,
+                               unwrap_provenance *out)
+{
+    memset(out, 0, sizeof *out);
+    double nq = 0, lq = 0, qa = 0, la = 0;
+    for (int c = 0; c < r->n_charts; c++) {
+        int src = r->chart_source[c];
+        if (src < 0 || src >= CHART_SOURCE_COUNT) continue;
+        out->count[src]++;
+        out->area[src] += cf[c].area;
+        out->total_area += cf[c].area;
+        if (chart_source_is_network((chart_source)src) && isfinite(r->chart_net_qce[c])) {
+            nq += cf[c].area * r->chart_net_qce[c];
+            qa += cf[c].area;
+            if (isfinite(r->chart_lscm_qce[c])) { lq += cf[c].area * r->chart_lscm_qce[c]; la += cf[c].area; }
+        }
+    }
+    double t = out->total_area;
+    out->network_area_fraction =
+        t > 0 ? (out->area[CHART_SOURCE_NETWORK] + out->area[CHART_SOURCE_NETWORK_REFINED]) / t : 0;
+    out->network_qce_mean = qa > 0 ? nq / qa : NAN;
+    out->lscm_qce_mean_same_charts = la > 0 && la >= qa * (1 - 1e-12) ? lq / la : NAN;
+}
+
 static void json_number_or_null(json_writer *w, double v)
 {
     if (isfinite(v)) json_number(w, v);
@@ -71,22 +91,13 @@ static void json_number_or_null(json_writer *w, double v)
  * charts; "chart_list": every chart's figures. */
 static void write_provenance(json_writer *w, const struct neuv_unwrap_result *r)
 {
-    chart_figures *cf = chart_figures_compute(r);
+    unwrap_chart_figures *cf = unwrap_chart_figures_compute(r);
     if (!cf || !r->chart_source) { free(cf); return; }
-    int count[CHART_SOURCE_COUNT] = {0};
-    double area[CHART_SOURCE_COUNT] = {0}, total = 0, nq = 0, lq = 0, qa = 0, la = 0;
-    for (int c = 0; c < r->n_charts; c++) {
-        int src = r->chart_source[c];
-        if (src < 0 || src >= CHART_SOURCE_COUNT) continue;
-        count[src]++;
-        area[src] += cf[c].area;
-        total += cf[c].area;
-        if (chart_source_is_network((chart_source)src) && isfinite(r->chart_net_qce[c])) {
-            nq += cf[c].area * r->chart_net_qce[c];
-            qa += cf[c].area;
-            if (isfinite(r->chart_lscm_qce[c])) { lq += cf[c].area * r->chart_lscm_qce[c]; la += cf[c].area; }
-        }
-    }
+    unwrap_provenance pv;
+    unwrap_provenance_compute(r, cf, &pv);
+    const int *count = pv.count;
+    const double *area = pv.area;
+    double total = pv.total_area;
     json_key(w, "provenance");
     json_begin_object(w);
     json_key(w, "sources");
@@ -100,10 +111,9 @@ static void write_provenance(json_writer *w, const struct neuv_unwrap_result *r)
         json_end_object(w);
     }
     json_end_object(w);
-    json_key(w, "network_area_fraction");
-    json_number(w, total > 0 ? (area[CHART_SOURCE_NETWORK] + area[CHART_SOURCE_NETWORK_REFINED]) / total : 0);
-    json_key(w, "network_qce_mean"); json_number_or_null(w, qa > 0 ? nq / qa : NAN);
-    json_key(w, "lscm_qce_mean_same_charts"); json_number_or_null(w, la > 0 && la >= qa * (1 - 1e-12) ? lq / la : NAN);
+    json_key(w, "network_area_fraction"); json_number(w, pv.network_area_fraction);
+    json_key(w, "network_qce_mean"); json_number_or_null(w, pv.network_qce_mean);
+    json_key(w, "lscm_qce_mean_same_charts"); json_number_or_null(w, pv.lscm_qce_mean_same_charts);
     json_end_object(w);
 
     json_key(w, "chart_list");

@@ -1,0 +1,19 @@
+/* What the other public-API files need of the atlas. */
+#ifndef NEUV_API_API_ATLAS_H
+#define NEUV_API_API_ATLAS_H
+
+#include "neuv/neuv.h"
+
+struct neuv_unwrap_result;
+struct unwrap_model;
+
+/* The added meshes as one (NULL when none was added). */
+const neuv_mesh *api_atlas_input(const neuv_atlas *a);
+const neuv_callbacks *api_atlas_callbacks(const neuv_atlas *a);
+/* Makes r (owned from now on) the atlas's packed result, discarding every
+ * stage; no stage can run again from it. */
+neuv_status api_atlas_adopt(neuv_atlas *a, struct neuv_unwrap_result *r);
+/* Hands over the model kept by generate with keep_model. */
+neuv_status api_atlas_take_model(neuv_atlas *a, struct unwrap_model **out);
+
+#endif
