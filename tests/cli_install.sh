@@ -13,6 +13,11 @@ for tool in cmake cc pkg-config nm readelf; do
     if ! command -v "$tool" >/dev/null; then echo "SKIP: no $tool"; exit 77; fi
 done
 if [ ! -e "$BUILD/libneuv.so" ]; then echo "FAIL: no $BUILD/libneuv.so"; exit 1; fi
+# A sanitizer build's library needs the ASan runtime loaded first, which a
+# plain cc build of the example does not do.
+if readelf -d "$BUILD/libneuv.so" | grep -q 'NEEDED.*libasan'; then
+    echo "SKIP: $BUILD is a sanitizer build"; exit 77
+fi
 mkdir -p "${NEUV_TEST_TMP:-/tmp}"
 TMP=$(mktemp -d "${NEUV_TEST_TMP:-/tmp}/cli_install.XXXXXX")
 trap 'rm -rf "$TMP"' EXIT
