@@ -118,7 +118,7 @@ int main(void)
     printf("neuv %s: box with %d vertices, %d faces\n", neuv_version(),
            neuv_mesh_vertex_count(mesh), neuv_mesh_face_count(mesh));
 
-    /* Quick settings, about a second: least squares conformal maps on the
+    /* Quick settings, a second or two: least squares conformal maps on the
      * charts (the default, NEUV_METHOD_NEURAL, trains the paper's
      * parameterization networks), a short training of the network that
      * finds the charts, and a small atlas, which packs faster. */
