@@ -2,11 +2,14 @@
 #   make demo   install what is missing, build, run the whole pipeline on a built-in shape
 #   make test   the same set-up and build, then every test through ctest
 # `make` alone builds; the CLI is build/neuv.
+#   make install PREFIX=DIR   build, then install the library, header, CLI,
+#                             pkg-config file and CMake package under DIR
 
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
+PREFIX ?= /usr/local
 
-.PHONY: all build setup demo test bench sanitize clean
+.PHONY: all build setup demo test bench install sanitize clean
 
 all: build
 
@@ -29,6 +32,9 @@ test: setup
 
 bench: setup build
 	cmake --build $(BUILD) --target benches -j $(JOBS)
+
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 # The unit tests again, built with AddressSanitizer and UBSan.
 sanitize: setup
