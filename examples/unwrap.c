@@ -70,81 +70,54 @@ static void make_box(float positions[N_VERTICES][3], int triangles[N_FACES][3])
     }
 }
 
-/* Writes the arrays as an OBJ (1-based indices). 0 on success, else -1
- * with errno set. */
-static int write_obj(const char *path, float positions[][3], int n_vertices,
-                     int triangles[][3], int n_faces)
+static int fail(neuv_atlas *atlas)
 {
-    FILE *fp = fopen(path, "w");
-    if (!fp) return -1;
-    for (int v = 0; v < n_vertices; v++)
-        fprintf(fp, "v %.9g %.9g %.9g\n", (double)positions[v][0], (double)positions[v][1],
-                (double)positions[v][2]);
-    for (int f = 0; f < n_faces; f++)
-        fprintf(fp, "f %d %d %d\n", triangles[f][0] + 1, triangles[f][1] + 1, triangles[f][2] + 1);
-    int failed = ferror(fp);
-    if (fclose(fp) != 0 || failed) return -1;
-    return 0;
-}
-
-/* The box as a neuv_mesh, read back from a temporary OBJ. NULL, with one
- * line on stderr, on failure. */
-static neuv_mesh *load_box(void)
-{
-    float positions[N_VERTICES][3];
-    int triangles[N_FACES][3];
-    make_box(positions, triangles);
-
-    char dir[] = "/tmp/neuv-example-XXXXXX", path[sizeof dir + 16];
-    if (!mkdtemp(dir)) {
-        fprintf(stderr, "unwrap: error: %s: %s\n", dir, strerror(errno));
-        return NULL;
-    }
-    snprintf(path, sizeof path, "%s/box.obj", dir);
-    neuv_mesh *mesh = NULL;
-    if (write_obj(path, positions, N_VERTICES, triangles, N_FACES) != 0)
-        fprintf(stderr, "unwrap: error: %s: %s\n", path, strerror(errno));
-    else if (neuv_mesh_load(path, &mesh) != NEUV_OK)
-        fprintf(stderr, "unwrap: error: %s\n", neuv_last_error());
-    remove(path);
-    rmdir(dir);
-    return mesh;
+    fprintf(stderr, "unwrap: error: %s\n", neuv_last_error());
+    neuv_atlas_destroy(atlas);
+    return 2;
 }
 
 int main(void)
 {
-    neuv_mesh *mesh = load_box();
-    if (!mesh) return 2;
-    printf("neuv %s: box with %d vertices, %d faces\n", neuv_version(),
-           neuv_mesh_vertex_count(mesh), neuv_mesh_face_count(mesh));
+    static float positions[N_VERTICES][3];
+    static int triangles[N_FACES][3];
+    make_box(positions, triangles);
+    printf("neuv %s: box with %d vertices, %d faces\n", neuv_version(), N_VERTICES, N_FACES);
+
+    neuv_mesh_decl box;
+    neuv_mesh_decl_init(&box);
+    box.positions = positions;
+    box.vertex_count = N_VERTICES;
+    box.indices = triangles;
+    box.index_type = NEUV_INT32;
+    box.index_count = 3 * N_FACES;
 
     /* Quick settings, a second or two: least squares conformal maps on the
-     * charts (the default, NEUV_METHOD_NEURAL, trains the paper's
-     * parameterization networks), a short training of the network that
-     * finds the charts, and a small atlas, which packs faster. */
+     * charts (the default, NEUV_METHOD_NEURAL, trains the parameterization
+     * networks), a short training of the network that finds the charts,
+     * and a small atlas, which packs faster. */
     neuv_unwrap_options o;
-    neuv_unwrap_options_default(&o);
+    neuv_unwrap_options_init(&o);
     o.method = NEUV_METHOD_LSCM;
     o.iters = 50;
     o.resolution = 256;
     o.use_cache = 0; /* no operator cache on disk */
 
-    neuv_unwrap_result *result = NULL;
-    neuv_status s = neuv_unwrap(mesh, &o, &result);
-    neuv_mesh_free(mesh);
-    if (s != NEUV_OK) {
-        fprintf(stderr, "unwrap: error: %s\n", neuv_last_error());
-        return 2;
-    }
-    printf("charts: %d\n", neuv_unwrap_chart_count(result));
-    char *report = neuv_unwrap_report_json(result, "box", 0, 0);
-    if (!report) {
-        fprintf(stderr, "unwrap: error: %s\n", neuv_last_error());
-        neuv_unwrap_result_free(result);
-        return 2;
-    }
+    neuv_atlas *atlas = NULL;
+    if (neuv_atlas_create(&atlas) != NEUV_OK) return fail(atlas);
+    if (neuv_atlas_add_mesh(atlas, &box) != NEUV_OK) return fail(atlas);
+    if (neuv_atlas_generate(atlas, &o) != NEUV_OK) return fail(atlas);
+
+    neuv_atlas_output out;
+    if (neuv_atlas_get_output(atlas, 0, &out) != NEUV_OK) return fail(atlas);
+    printf("charts: %d\n", neuv_atlas_chart_count(atlas));
+    printf("output: %d vertices (split along seams), %d triangles\n", out.vertex_count, out.index_count / 3);
+    printf("vertex 0: input vertex %d, uv %.4f %.4f\n", out.xref[0], out.uvs[0], out.uvs[1]);
+
+    char *report = neuv_atlas_report_json(atlas, "box", 0, 0);
+    if (!report) return fail(atlas);
     printf("%s\n", report);
-    free(report);
-    neuv_unwrap_result_free(result);
+    neuv_free(report);
+    neuv_atlas_destroy(atlas);
     return 0;
 }
