@@ -29,9 +29,9 @@
 #include "flatten/lscm.h"
 #include "geometry/heat_geodesics.h"
 #include "losses/patch_losses.h"
+#include "metrics/chart_uv_check.h"
 #include "metrics/uv_metrics.h"
 #include "nn/adam.h"
-#include "unwrap/chart_uv_check.h"
 #include "atlas/convex_hull.h"
 
 void patchnet_default_options(patchnet_options *o)
