@@ -32,6 +32,7 @@
 #include "metrics/uv_metrics.h"
 #include "models/param_net.h"
 #include "nn/nn.h"
+#include "segment/patchnet_segment.h"
 
 /* Upper half of a unit UV sphere (z >= 0): a curved disk. */
 static neuv_mesh *test_cap(void)

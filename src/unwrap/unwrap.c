@@ -22,6 +22,7 @@
 #include "models/param_net.h"
 #include "models/patchnet.h"
 #include "nn/nn.h"
+#include "segment/patchnet_segment.h"
 #include "unwrap/unwrap_model.h"
 
 void neuv_unwrap_options_default(neuv_unwrap_options *o)
