@@ -6,9 +6,10 @@
  * This is the network: create, train (one shape or several), infer labels
  * and features, and what a checkpoint saves (patchnet_model). Turning its
  * patches into charts that are topological disks, with the auto-K split and
- * merge loop, is segment/patchnet_segment.h; patchnet_options also carries
+ * merge loop, is segment/patchnet_segment.h. patchnet_options also carries
  * that stage's settings (charts, max_distortion, max_charts, min_area_share,
- * merge_distortion, min_convexity) so one struct configures the whole stage.
+ * merge_distortion, min_convexity) and patchnet_report its chart counts, so
+ * one struct configures the whole stage and one reports it.
  *
  * Usage:
  *     patchnet_options o;  patchnet_default_options(&o);
