@@ -25,13 +25,14 @@
 #include "flatten/uv_refine.h"
 #include "geometry/operator_cache.h"
 #include "geometry/operators.h"
+#include "metrics/chart_uv_check.h"
 #include "models/patchnet.h"
-#include "unwrap/chart_uv_check.h"
 #include "mesh/clean.h"
 #include "mesh/shapes.h"
 #include "metrics/uv_metrics.h"
 #include "models/param_net.h"
 #include "nn/nn.h"
+#include "segment/patchnet_segment.h"
 
 /* Upper half of a unit UV sphere (z >= 0): a curved disk. */
 static neuv_mesh *test_cap(void)

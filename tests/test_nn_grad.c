@@ -403,7 +403,7 @@ int main(void)
         int rs[6] = {0, 2, 2, 5, 6, 7};
         int col[7] = {0, 3, 1, 2, 3, 0, 3};
         double val[7] = {0.5, -1.0, 2.0, 0.25, -0.75, 1.5, 0.3};
-        sparse_matrix sm = {5, 4, rs, col, val};
+        nn_csr sm = {5, 4, rs, col, val};
         CHECK_INT(nn_sparse_from_csr(&sm, &sparse), NEUV_OK);
         input_spec sp = {4, 3, -1, 1, 0, 0};
         gradcheck("spmm", g_spmm, 1, &sp, E);

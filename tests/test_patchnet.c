@@ -13,6 +13,7 @@
 #include "mesh/shape_family.h"
 #include "mesh/shapes.h"
 #include "models/patchnet.h"
+#include "segment/patchnet_segment.h"
 
 #ifdef __SANITIZE_ADDRESS__
 #define SANITIZED 1

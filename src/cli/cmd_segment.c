@@ -16,6 +16,7 @@
 #include "io/labels_write.h"
 #include "mesh/clean.h"
 #include "models/patchnet.h"
+#include "segment/patchnet_segment.h"
 
 #define SEGMENT_USAGE "segment IN -o OUT [--charts auto|K] [--max-distortion X] [--features hks|xyz] " \
                       "[--preset fast|paper] [--seed S] [--iters N] [--preview PREFIX] [--no-cache] [--json]"

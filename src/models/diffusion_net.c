@@ -9,6 +9,12 @@
 #include "core/error.h"
 #include "core/rng.h"
 
+/* nn's view of a geometry operator. */
+static nn_csr csr_view(const sparse_matrix *a)
+{
+    return (nn_csr){a->rows, a->cols, a->row_start, a->col, a->val};
+}
+
 neuv_status diffusion_net_create(diffusion_net *net, const diffusion_net_config *cfg, nn_params *params,
                                  const char *prefix)
 {
@@ -109,8 +115,9 @@ neuv_status diffusion_net_geometry_create(const neuv_mesh *m, const operators *o
     for (int i = 0; i < k; i++) g->neg_evals[i] = (float)(-ops->evals[i] * area);
     for (int f = 0; f < m->nf; f++)
         for (int c = 0; c < 3; c++) g->face_vertex[(size_t)c * m->nf + f] = m->tri[3 * f + c];
-    neuv_status st = nn_sparse_from_csr(&ops->grad_x, &g->grad_x);
-    if (!st) st = nn_sparse_from_csr(&ops->grad_y, &g->grad_y);
+    nn_csr gx = csr_view(&ops->grad_x), gy = csr_view(&ops->grad_y);
+    neuv_status st = nn_sparse_from_csr(&gx, &g->grad_x);
+    if (!st) st = nn_sparse_from_csr(&gy, &g->grad_y);
     if (st) { diffusion_net_geometry_free(g); return st; }
     size_t nnx = (size_t)g->grad_x.row_start[g->grad_x.rows], nny = (size_t)g->grad_y.row_start[g->grad_y.rows];
     for (size_t e = 0; e < nnx; e++) { g->grad_x.val[e] *= (float)sa; g->grad_x.t_val[e] *= (float)sa; }

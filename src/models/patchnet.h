@@ -1,21 +1,23 @@
 /* PatchNet (Pokhariya et al. 2022, section 3.1; SPEC.md section 1.1): a
  * DiffusionNet whose per-face softmax over K outputs softly assigns every
  * face to a patch, trained on the shape itself with L_cos + L_geo
- * (losses/patch_losses.h, weights 1 and 1) by Adam, then turned into charts
- * that are topological disks (charts/charts.h).
+ * (losses/patch_losses.h, weights 1 and 1) by Adam.
  *
- * Number of charts: a fixed K (`charts` > 0), or auto (`charts` = 0): train
- * with a small K, then split every chart whose LSCM flattening has qce_mean
- * >= max_distortion or a flipped face, until all pass or max_charts is
- * reached (see patchnet.c for why splitting rather than retraining), then
- * merge adjacent charts back while their union flattens well.
+ * This is the network: create, train (one shape or several), infer labels
+ * and features, and what a checkpoint saves (patchnet_model). Turning its
+ * patches into charts that are topological disks, with the auto-K split and
+ * merge loop, is segment/patchnet_segment.h. patchnet_options also carries
+ * that stage's settings (charts, max_distortion, max_charts, min_area_share,
+ * merge_distortion, min_convexity) and patchnet_report its chart counts, so
+ * one struct configures the whole stage and one reports it.
  *
  * Usage:
  *     patchnet_options o;  patchnet_default_options(&o);
- *     int *chart = malloc(nf * sizeof(int)), n; float *feat; int dim;
- *     patchnet_report rep;
- *     if (patchnet_segment(m, &ops, &o, chart, &n, &feat, &dim, &rep)) ...
- *     free(feat); free(chart); */
+ *     patchnet_model model;
+ *     if (patchnet_model_create_for_mesh(&model, &o, m, &ops, 8)) ...
+ *     if (patchnet_train(&model, m, &ops, &o, NULL)) ...
+ *     patchnet_infer(&model, m, &ops, face_label);   // face_label: #F ints
+ *     patchnet_model_free(&model); */
 #ifndef NEUV_MODELS_PATCHNET_H
 #define NEUV_MODELS_PATCHNET_H
 
@@ -117,35 +119,5 @@ neuv_status patchnet_infer(const patchnet_model *model, const neuv_mesh *m, cons
  *          (malloc'd, caller frees; may be NULL) */
 neuv_status patchnet_infer_features(const patchnet_model *model, const neuv_mesh *m, const operators *ops,
                                     int *face_label, float **vertex_features, int *feature_dim);
-
-/* Whole stage: train, argmax, charts_from_labels, and for auto K the split
- * loop until every chart flattens by LSCM with qce_mean < max_distortion
- * and no flipped face (or max_charts is reached: the report says so through
- * worst_qce).
- * Inputs:  m (cleaned mesh), ops (its operators), o (NULL: defaults)
- * Outputs: face_chart #F chart ids (caller allocates), n_charts,
- *          vertex_features #V by *feature_dim (malloc'd; caller frees; may be
- *          NULL), rep (may be NULL) */
-neuv_status patchnet_segment(const neuv_mesh *m, const operators *ops, const patchnet_options *o,
-                             int *face_chart, int *n_charts, float **vertex_features, int *feature_dim,
-                             patchnet_report *rep);
-
-/* As patchnet_segment, also handing over the trained model (*model_out
- * filled; caller frees with patchnet_model_free); model_out may be NULL. */
-neuv_status patchnet_segment_model(const neuv_mesh *m, const operators *ops, const patchnet_options *o,
-                                   int *face_chart, int *n_charts, float **vertex_features, int *feature_dim,
-                                   patchnet_report *rep, patchnet_model *model_out);
-
-/* The chart half of patchnet_segment with a trained model (inference only):
- * argmax, charts_from_labels, and for auto K (o->charts = 0) the split and
- * merge loop. Outputs as patchnet_segment; rep's chart fields are filled. */
-neuv_status patchnet_charts_from_model(const patchnet_model *model, const neuv_mesh *m, const operators *ops,
-                                      const patchnet_options *o, int *face_chart, int *n_charts,
-                                      float **vertex_features, int *feature_dim, patchnet_report *rep);
-
-/* LSCM quality of one chart: flattens chart `id` alone and measures it.
- * Outputs: qce_mean (INFINITY when LSCM fails), flipped faces. */
-neuv_status patchnet_chart_lscm_quality(const neuv_mesh *m, const int *face_chart, int id, double *qce_mean,
-                                        int *flipped);
 
 #endif

@@ -52,7 +52,6 @@
 
 #include <stddef.h>
 #include "neuv/neuv.h"
-#include "geometry/sparse_matrix.h"
 
 typedef enum nn_op {
     NN_OP_LEAF = 0,       /* input, constant or parameter */
@@ -217,7 +216,15 @@ typedef struct nn_sparse {
     int *row_start, *col; float *val;       /* A   */
     int *t_row_start, *t_col; float *t_val; /* A^T */
 } nn_sparse;
-neuv_status nn_sparse_from_csr(const sparse_matrix *a, nn_sparse *out);
+/* A borrowed float64 CSR matrix to copy from: row_start #rows+1, col and val
+ * #nnz with columns sorted within each row (the fields of geometry's
+ * sparse_matrix, so a caller fills it from one; nn itself knows no geometry). */
+typedef struct nn_csr {
+    int rows, cols;
+    const int *row_start, *col;
+    const double *val;
+} nn_csr;
+neuv_status nn_sparse_from_csr(const nn_csr *a, nn_sparse *out);
 void nn_sparse_free(nn_sparse *s);
 /* out = S a: S is #R by #C, a is #C by k, out #R by k. */
 nn_tensor *nn_spmm(nn_ctx *ctx, const nn_sparse *s, nn_tensor *a);

@@ -265,7 +265,7 @@ void nn_sparse_free(nn_sparse *s)
     memset(s, 0, sizeof *s);
 }
 
-neuv_status nn_sparse_from_csr(const sparse_matrix *a, nn_sparse *out)
+neuv_status nn_sparse_from_csr(const nn_csr *a, nn_sparse *out)
 {
     memset(out, 0, sizeof *out);
     if (!a || a->rows <= 0 || a->cols <= 0 || !a->row_start)

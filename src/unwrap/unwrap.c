@@ -18,10 +18,11 @@
 #include "flatten/uv_refine.h"
 #include "geometry/operator_cache.h"
 #include "geometry/operators.h"
+#include "metrics/chart_uv_check.h"
 #include "models/param_net.h"
 #include "models/patchnet.h"
 #include "nn/nn.h"
-#include "unwrap/chart_uv_check.h"
+#include "segment/patchnet_segment.h"
 #include "unwrap/unwrap_model.h"
 
 void neuv_unwrap_options_init(neuv_unwrap_options *o)

@@ -19,12 +19,12 @@
 #include "flatten/uv_refine.h"
 #include "geometry/operator_cache.h"
 #include "mesh/edge_map.h"
+#include "metrics/chart_uv_check.h"
 #include "metrics/uv_overlap.h"
 #include "nn/nn.h"
 #include "remesh/simplify.h"
 #include "spatial/bvh.h"
 #include "spatial/triangle_closest_point.h"
-#include "unwrap/chart_uv_check.h"
 #include "unwrap/unwrap_internal.h"
 
 /* Resolution of the atlas overlap test: the one of the overlap metric. */

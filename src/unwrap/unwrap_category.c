@@ -13,6 +13,7 @@
 #include "models/param_net.h"
 #include "models/patchnet.h"
 #include "nn/nn.h"
+#include "segment/patchnet_segment.h"
 
 #define CATEGORY_PSI_NOISE 0.5
 

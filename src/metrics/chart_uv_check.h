@@ -4,8 +4,8 @@
  * injective map of a disk whose boundary is a simple curve is a bijection
  * onto the region it bounds), so passing charts have neither flips nor
  * self-overlaps, whatever the overlap raster's resolution. */
-#ifndef NEUV_UNWRAP_CHART_UV_CHECK_H
-#define NEUV_UNWRAP_CHART_UV_CHECK_H
+#ifndef NEUV_METRICS_CHART_UV_CHECK_H
+#define NEUV_METRICS_CHART_UV_CHECK_H
 
 #include "mesh/mesh.h"
 

@@ -1,4 +1,4 @@
-#include "unwrap/chart_uv_check.h"
+#include "metrics/chart_uv_check.h"
 
 #include <math.h>
 #include <stdlib.h>
