@@ -159,7 +159,7 @@ NEUV_API void neuv_mesh_free(neuv_mesh *mesh);
 NEUV_API int neuv_mesh_vertex_count(const neuv_mesh *mesh);
 NEUV_API int neuv_mesh_face_count(const neuv_mesh *mesh);
 NEUV_API int neuv_mesh_has_uv(const neuv_mesh *mesh);
-/* The repairs neuv_mesh_clean made (docs/cli.md "Cleaning"). */
+/* The repairs neuv_mesh_clean made (docs/report.md "Cleaning"). */
 typedef struct neuv_clean_report {
     int welded_vertices;          /* merged into an earlier vertex at the identical position */
     int degenerate_faces;         /* dropped: a repeated vertex or zero area */
@@ -209,7 +209,7 @@ typedef enum neuv_preset {
     NEUV_PRESET_PAPER = 1  /* the published method's configuration */
 } neuv_preset;
 
-/* Charts: the mesh is cleaned (docs/cli.md "Cleaning"), then PatchNet cuts it. */
+/* Charts: the mesh is cleaned (docs/report.md "Cleaning"), then PatchNet cuts it. */
 typedef struct neuv_chart_options {
     neuv_preset preset;
     int charts;              /* 0: automatic (default); K: exactly K patches before disk cutting */
@@ -279,11 +279,11 @@ typedef struct neuv_metrics {
 } neuv_metrics;
 
 /* The metrics of a mesh's UVs as JSON (docs/report.md "neuv eval"): an
- * object with the version, input_name, vertices, faces and the metrics;
+ * object with the version, the input (input_name), vertices, faces and the metrics;
  * release with neuv_free; NULL when memory runs out. */
 NEUV_API char *neuv_metrics_json(const neuv_metrics *metrics, const neuv_mesh *mesh, const char *input_name);
 
-/* The metrics of `neuv eval`: of mesh's UVs, positions welded first (on a
+/* The metrics of mesh's UVs, positions welded first (on a
  * copy) so that seams are found across exactly coinciding vertices.
  * NEUV_ERR_INPUT when the mesh has no UVs. */
 NEUV_API neuv_status neuv_evaluate(const neuv_mesh *mesh, neuv_metrics *out);
