@@ -157,6 +157,7 @@ static void test_stages_and_generate(void)
     uo.method = NEUV_METHOD_LSCM;
     uo.use_cache = 0;
     uo.charts = 2;
+    uo.iters = 30;
     neuv_atlas *one = NULL;
     CHECK(neuv_atlas_create(&one) == NEUV_OK);
     CHECK(neuv_atlas_add_mesh(one, &d) == NEUV_OK);
@@ -191,9 +192,11 @@ static void test_stages_and_generate(void)
     neuv_chart_options_init(&co);
     co.charts = 2;
     co.use_cache = 0;
+    co.iters = 30;
     neuv_param_options po;
     neuv_param_options_init(&po);
     po.method = NEUV_METHOD_LSCM;
+    po.iters = 30;
     neuv_pack_options ko;
     neuv_pack_options_init(&ko);
     CHECK(neuv_atlas_compute_charts(staged, &co) == NEUV_OK);
@@ -244,6 +247,7 @@ static void test_two_meshes(void)
     uo.method = NEUV_METHOD_LSCM;
     uo.use_cache = 0;
     uo.charts = 2;
+    uo.iters = 30;
     CHECK(neuv_atlas_generate(atlas, &uo) == NEUV_OK);
     neuv_atlas_output oa, ob;
     CHECK(neuv_atlas_get_output(atlas, 0, &oa) == NEUV_OK);
@@ -282,7 +286,7 @@ static void test_callbacks_and_cancel(void)
     neuv_unwrap_options_init(&uo);
     uo.use_cache = 0;
     uo.charts = 2;
-    uo.iters = 40;
+    uo.iters = 30;
     uo.refine = 0;
     uo.threads = 1;
 
@@ -355,7 +359,7 @@ static void test_two_threads(void)
     neuv_unwrap_options_init(&uo);
     uo.use_cache = 0;
     uo.charts = 2;
-    uo.iters = 60;
+    uo.iters = 30;
     uo.refine = 20;
     uo.threads = 1;
     job seq[2] = {{&d1, uo, NEUV_OK, NULL, 0}, {&d2, uo, NEUV_OK, NULL, 0}};
@@ -384,7 +388,7 @@ static void test_models(void)
     neuv_unwrap_options_init(&uo);
     uo.use_cache = 0;
     uo.charts = 2;
-    uo.iters = 60;
+    uo.iters = 30;
     uo.refine = 0;
     uo.threads = 1;
     neuv_atlas *a = NULL;
@@ -437,6 +441,7 @@ static void test_pack_existing(void)
     neuv_unwrap_options_init(&uo);
     uo.method = NEUV_METHOD_LSCM;
     uo.use_cache = 0;
+    uo.iters = 30;
     CHECK(neuv_atlas_generate(a, &uo) == NEUV_OK);
     /* The atlas's mesh, its charts repacked at another size. */
     int nf = neuv_mesh_face_count(neuv_atlas_mesh(a));

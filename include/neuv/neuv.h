@@ -31,7 +31,9 @@
  *
  * The stages can also run one by one and again with other options:
  * neuv_atlas_compute_charts, neuv_atlas_parameterize, neuv_atlas_pack;
- * re-running a stage discards the stages after it.
+ * re-running a stage discards the stages after it. A call refused for its
+ * arguments changes nothing; a stage that fails or is cancelled leaves the
+ * atlas at the stage before it.
  *
  * Lifetimes: every object returned through an out-pointer (`neuv_mesh **`,
  * `neuv_atlas **`, `neuv_model **`) belongs to the caller and is released
@@ -312,7 +314,9 @@ NEUV_API neuv_status neuv_atlas_parameterize(neuv_atlas *atlas, const neuv_param
 /* Stage 3 (after 2): charts that pack badly are split, then packed; metrics. */
 NEUV_API neuv_status neuv_atlas_pack(neuv_atlas *atlas, const neuv_pack_options *o);
 /* All three (and, with train_faces, the simplified-copy path) in one call.
- * Gives the same bytes as the three stages with the same options. */
+ * Gives the same bytes as the three stages with the same options. After
+ * the simplified-copy path (train_faces below the face count) no single
+ * stage can run again: there is no stage of the full mesh to start from. */
 NEUV_API neuv_status neuv_atlas_generate(neuv_atlas *atlas, const neuv_unwrap_options *o);
 
 /* Number of the last stage run: 0 none, 1 charts, 2 parameterized, 3 packed. */
