@@ -89,7 +89,10 @@ check_run() {
     if python3 - "$TMP/$label.out" "$charts" <<'EOF'
 import json, sys
 lines = open(sys.argv[1]).read().splitlines()
-j = json.loads(lines[2])
+j = json.loads(next(l for l in lines if l.startswith("{")))
+out = next(l for l in lines if l.startswith("output: ")).split()
+# Output vertices are split along seams (more than the input's), triangles are the input's.
+assert int(out[1]) > j["input_vertices"] and int(out[6]) == j["input_faces"], out
 assert j["method"] == "lscm", j["method"]
 assert j["charts"] == int(sys.argv[2]), j["charts"]
 assert j["metrics"]["flipped"] == 0 and j["metrics"]["overlap_fraction"] == 0, j["metrics"]
