@@ -10,7 +10,9 @@ HERE=$(cd "$(dirname "$0")" && pwd)
 SRC=$(cd "$HERE/.." && pwd)
 BUILD=$(cd "$(dirname "$NEUV")" && pwd)
 NEUV=$BUILD/$(basename "$NEUV")
-PY=/usr/bin/python3; [ -x "$PY" ] || PY=$(command -v python3) || { echo "SKIP: no python3"; exit 77; }
+# Debian's Python (NEUV_PYTHON to choose another), else the first python3 on PATH.
+PY=${NEUV_PYTHON:-/usr/bin/python3}
+[ -x "$PY" ] || PY=$(command -v python3) || { echo "SKIP: no python3"; exit 77; }
 "$PY" -c 'import numpy' 2>/dev/null || { echo "SKIP: no NumPy for $PY (Debian: python3-numpy; make setup)"; exit 77; }
 "$PY" -m pytest --version >/dev/null 2>&1 || { echo "SKIP: no pytest for $PY (Debian: python3-pytest; make setup)"; exit 77; }
 [ -e "$BUILD/libneuv.so" ] || { echo "FAIL: no $BUILD/libneuv.so"; exit 1; }
