@@ -339,10 +339,16 @@ def pack(V, F, uvs, *, return_report=False, **options):
     if per_corner:
         result = corners
     else:
-        # Corners of one vertex share its UV, so they moved alike; a vertex
-        # no triangle uses keeps its UV.
+        # Corners of one vertex share its UV and so moved alike, unless the
+        # vertex joins two charts that touch only there; a vertex no
+        # triangle uses keeps its UV.
         result = UV.copy()
         result[F.ravel()] = corners.reshape(-1, 2)
+        apart = (result[F] != corners).any(axis=2)
+        if apart.any():
+            v = int(F[apart][0])
+            raise ValueError(f"vertex {v} joins charts that touch only at it and were packed apart, so one UV "
+                             "per vertex cannot hold the result: pass per-corner UVs (uvs[F], shape (M, 3, 2))")
     return (result, _struct_dict(report)) if return_report else result
 
 

@@ -138,3 +138,16 @@ def test_pack_and_evaluate(mesh, unwrapped):
     corners = neuv.pack(V, F, moved[indices], resolution=256)
     assert corners.shape == (len(F), 3, 2)
     np.testing.assert_allclose(corners, packed[indices], rtol=0, atol=1e-12)
+
+
+def test_pack_charts_touching_at_a_vertex():
+    """Two triangles sharing only vertex 0 are two charts: packed apart, that
+    vertex needs two UVs, which per-corner UVs hold and per-vertex ones cannot."""
+    V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [-1, 0, 0], [-1, -1, 0]], float)
+    F = np.array([[0, 1, 2], [0, 3, 4]])
+    uv = V[:, :2]
+    with pytest.raises(ValueError, match="vertex 0 joins charts .* pass per-corner UVs"):
+        neuv.pack(V, F, uv, resolution=64)
+    corners = neuv.pack(V, F, uv[F], resolution=64)
+    assert corners.min() >= 0 and corners.max() <= 1 and not np.array_equal(corners[0, 0], corners[1, 0])
+    assert neuv.evaluate(V, F, corners)["charts"] == 2
