@@ -4,12 +4,16 @@
 # `make` alone builds; the CLI is build/neuv.
 #   make install PREFIX=DIR   build, then install the library, header, CLI,
 #                             pkg-config file and CMake package under DIR
+#   make python               build, then install the Python package (python/)
+#                             into the venv .venv (VENV=DIR), Debian's Python
 
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 PREFIX ?= /usr/local
+PYTHON ?= /usr/bin/python3
+VENV   ?= .venv
 
-.PHONY: all build setup demo test bench install sanitize clean
+.PHONY: all build setup demo test bench install python sanitize clean
 
 all: build
 
@@ -35,6 +39,12 @@ bench: setup build
 
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
+
+# Debian's Python (not whatever python3 comes first on PATH), a venv that sees
+# Debian's NumPy, pip without network; libneuv.so is copied into the package.
+python: setup
+	@$(MAKE) --no-print-directory build
+	bash python/install.sh $(VENV) $(BUILD)/libneuv.so $(PYTHON)
 
 # The unit tests again, built with AddressSanitizer and UBSan.
 sanitize: setup

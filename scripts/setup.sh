@@ -12,7 +12,9 @@ PACKAGES=(
   libpng-dev zlib1g-dev              # preview pictures
   libmeshoptimizer-dev               # simplification for large meshes
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev  # isotropic remeshing (header-only CGAL; GMP/MPFR for exact predicates)
-  python3-scipy python3-numpy        # benchmarks only (SciPy reference)
+  python3-scipy python3-numpy        # benchmarks (SciPy reference); NumPy for the Python package
+  python3-pytest                     # the Python package's tests
+  python3-venv python3-setuptools python3-wheel  # make python: a venv, built and installed without network
 )
 
 missing=()

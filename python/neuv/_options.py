@@ -1,0 +1,159 @@
+"""Keyword options, named as the CLI's flags in snake_case, into the
+library's option structs.
+
+Each struct starts from the library's own defaults (neuv_*_options_init);
+only the options given are set. An option no call of this kind takes is a
+TypeError naming it; a value of the wrong type is a TypeError, a value out
+of the CLI's range a ValueError (the library checks ranges too)."""
+import ctypes
+import difflib
+import numbers
+
+from . import _capi
+
+
+def _integer(name, value, low=None, high=None):
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"option {name} must be an integer, got {value!r}")
+    value = int(value)
+    if (low is not None and value < low) or (high is not None and value > high):
+        span = f"at least {low}" if high is None else f"in {low}..{high}"
+        raise ValueError(f"option {name} must be {span}, got {value}")
+    return value
+
+
+def _flag(name, value):
+    if not isinstance(value, (bool, numbers.Integral)) or value not in (0, 1):
+        raise TypeError(f"option {name} must be True or False, got {value!r}")
+    return int(bool(value))
+
+
+def _choice(table):
+    def convert(name, value):
+        if value not in table:
+            raise ValueError(f"option {name} must be one of {', '.join(map(repr, table))}, got {value!r}")
+        return table[value]
+    return convert
+
+
+def _charts(name, value):
+    if value is None or value == "auto":
+        return 0
+    if isinstance(value, str):
+        raise ValueError(f"option charts must be 'auto' or a count in 1..4096, got {value!r}")
+    return _integer(name, value, 0, 4096)
+
+
+def _max_distortion(name, value):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"option {name} must be a number, got {value!r}")
+    if not value >= 1.0 or value == float("inf"):
+        raise ValueError(f"option {name} must be a finite number of at least 1, got {value!r}")
+    return float(value)
+
+
+def _refine(name, value):
+    return _integer(name, value, 0, 1000000)
+
+
+def _apply_refine(name, value):
+    return -1 if value is None else _integer(name, value, -1, 1000000)
+
+
+def _train_faces(name, value):
+    value = _integer(name, value, 0)
+    if 0 < value < 500:
+        raise ValueError(f"option {name} must be 0 (never simplify) or at least 500, got {value}")
+    return value
+
+
+# name -> converter(name, value) -> the C field's value; the field has the option's name.
+CONVERTERS = {
+    "method": _choice(_capi.METHODS),
+    "preset": _choice(_capi.PRESETS),
+    "charts": _charts,
+    "max_distortion": _max_distortion,
+    "iters": lambda n, v: _integer(n, v, 0),
+    "refine": _refine,
+    "seed": lambda n, v: _integer(n, v, 0, 2**64 - 1),
+    "threads": lambda n, v: _integer(n, v, 0),
+    "resolution": lambda n, v: _integer(n, v),
+    "padding": lambda n, v: _integer(n, v),
+    "allow_overlaps": _flag,
+    "use_cache": _flag,
+    "keep_model": _flag,
+    "train_faces": _train_faces,
+    "keep_scale": _flag,
+    "check_inference": _flag,
+    "lscm_baseline": _flag,
+    "shared_layer": _flag,
+    "finetune": lambda n, v: _integer(n, v, 0, 1000000),
+    "patch_iters": lambda n, v: _integer(n, v, 0, 10000000),
+}
+
+CHART = ("preset", "charts", "max_distortion", "iters", "seed", "threads", "use_cache")
+PARAM = ("method", "preset", "iters", "refine", "seed", "threads", "allow_overlaps")
+PACK = ("resolution", "padding")
+PACK_UVS = PACK + ("keep_scale",)
+UNWRAP = tuple(dict.fromkeys(CHART + PARAM + PACK + ("train_faces",)))
+GENERATE = UNWRAP + ("keep_model",)
+APPLY = ("threads", "use_cache", "allow_overlaps", "check_inference", "lscm_baseline", "finetune",
+         "shared_layer", "refine")
+TRAIN = ("preset", "charts", "max_distortion", "iters", "patch_iters", "refine", "seed", "threads",
+         "resolution", "padding", "use_cache")
+
+# The CLI's default where it differs from the library's (src/cli/cmd_unwrap.c):
+# above this many faces, train on a simplified copy and apply the model.
+DEFAULT_TRAIN_FACES = 20000
+
+
+def check_names(options, allowed, where):
+    """TypeError for the first option not in allowed."""
+    for name in options:
+        if name in allowed:
+            continue
+        if name in CONVERTERS:
+            raise TypeError(f"{where}: option '{name}' does not apply here (it takes: {', '.join(allowed)})")
+        close = difflib.get_close_matches(name, CONVERTERS, n=1)
+        hint = f"; did you mean '{close[0]}'?" if close else ""
+        raise TypeError(f"{where}: unknown option '{name}'{hint}")
+
+
+def fill(struct, options, allowed, where, converters=None):
+    """Sets struct's fields from options (a dict) after checking them."""
+    check_names(options, allowed, where)
+    for name, value in options.items():
+        convert = (converters or {}).get(name, CONVERTERS[name])
+        setattr(struct, name, convert(name, value))
+    return struct
+
+
+def make(kind, options, allowed, where, converters=None):
+    """kind's struct (e.g. _capi.ChartOptions) at the library's defaults,
+    then the options set."""
+    struct = kind()
+    init = {
+        _capi.ChartOptions: _capi.lib.neuv_chart_options_init,
+        _capi.ParamOptions: _capi.lib.neuv_param_options_init,
+        _capi.PackOptions: _capi.lib.neuv_pack_options_init,
+        _capi.UnwrapOptions: _capi.lib.neuv_unwrap_options_init,
+        _capi.ApplyOptions: _capi.lib.neuv_apply_options_init,
+    }[kind]
+    init(ctypes.byref(struct))
+    return fill(struct, options, allowed, where, converters)
+
+
+def unwrap(options, where, allowed=UNWRAP):
+    """neuv_unwrap_options as `neuv unwrap` sets them: train_faces defaults to
+    the CLI's 20000, and keeping a model turns refinement off unless refine is
+    given (the refinement is tied to this mesh's triangles)."""
+    o = make(_capi.UnwrapOptions, options, allowed, where)
+    if "train_faces" not in options:
+        o.train_faces = DEFAULT_TRAIN_FACES
+    if options.get("keep_model") and "refine" not in options:
+        o.refine = 0
+    return o
+
+
+def apply(options, where):
+    return make(_capi.ApplyOptions, options, APPLY, where, {"refine": _apply_refine})

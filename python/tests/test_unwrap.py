@@ -1,0 +1,153 @@
+"""neuv.unwrap, the Atlas stages, outputs, reports, packing and metrics of
+existing UVs."""
+import threading
+
+import numpy as np
+import pytest
+
+import neuv
+from meshes import torus
+
+QUICK = dict(method="lscm", iters=30, use_cache=False, resolution=256, threads=1)
+
+
+@pytest.fixture(scope="module")
+def mesh():
+    return torus()
+
+
+@pytest.fixture(scope="module")
+def unwrapped(mesh):
+    return neuv.unwrap(*mesh, return_report=True, **QUICK)
+
+
+def test_xatlas_outputs(mesh, unwrapped):
+    V, F = mesh
+    vmapping, indices, uvs, report = unwrapped
+    assert vmapping.dtype == np.uint32 and vmapping.ndim == 1
+    assert indices.dtype == np.uint32 and indices.shape == F.shape  # the torus loses no triangle to cleaning
+    assert uvs.dtype == np.float64 and uvs.shape == (len(vmapping), 2)
+    assert vmapping.max() < len(V) and indices.max() < len(vmapping)
+    assert len(vmapping) > len(V)  # split along the seams
+    assert uvs.min() >= 0 and uvs.max() <= 1
+    # Each output triangle is its input triangle (cleaning keeps their order here).
+    np.testing.assert_array_equal(V[vmapping[indices]], V[F])
+    assert report["charts"] >= 1 and report["metrics"]["flipped"] == 0
+
+
+def test_cleaning_drops_triangles():
+    V, F = torus(12, 6)
+    dirty = np.vstack([F, F[:1], [[0, 0, 1]]])  # a duplicate and a degenerate triangle
+    vmapping, indices, uvs, report = neuv.unwrap(V, dirty, return_report=True, **QUICK)
+    assert indices.shape == F.shape
+    assert report["cleaning"]["duplicate_faces"] == 1 and report["cleaning"]["degenerate_faces"] == 1
+    assert report["input_faces"] == len(dirty) and report["faces"] == len(F)
+
+
+def test_report_has_provenance(unwrapped):
+    report = unwrapped[3]
+    assert {"network_area_fraction", "sources"} <= set(report["provenance"])
+    assert report["method"] == "lscm" and report["input"] == ""
+    assert report["threads"] == 1 and report["pack"]["resolution"] == 256
+
+
+def test_stages_one_by_one_equal_generate(mesh, unwrapped):
+    vmapping, indices, uvs, report = unwrapped
+    with neuv.Atlas() as atlas:
+        assert atlas.add_mesh(*mesh) == 0 and atlas.stage == 0 and atlas.chart_count == 0
+        atlas.compute_charts(iters=30, use_cache=False, threads=1)
+        assert atlas.stage == 1 and atlas.chart_count >= 1
+        atlas.parameterize(method="lscm", threads=1)
+        atlas.pack(resolution=256)
+        assert atlas.stage == 3 and atlas.chart_count == report["charts"]
+        v2, i2, uv2, face_chart = atlas.get_output(0)
+        np.testing.assert_array_equal(v2, vmapping)
+        np.testing.assert_array_equal(i2, indices)
+        np.testing.assert_array_equal(uv2, uvs)
+        assert face_chart.shape == (len(indices),) and set(face_chart) == set(range(atlas.chart_count))
+        metrics = atlas.metrics
+        assert metrics == pytest.approx(report["metrics"], nan_ok=True)
+        # Packing again at another resolution starts from stage 2: the same charts, placed anew.
+        atlas.pack(resolution=512, padding=4)
+        assert atlas.report["pack"]["resolution"] == 512
+        assert not np.array_equal(atlas.get_output(0)[2], uvs)
+
+
+def test_several_meshes(mesh):
+    small = torus(12, 6, R=0.5, r=0.2)
+    with neuv.Atlas() as atlas:
+        assert atlas.add_mesh(*mesh) == 0
+        assert atlas.add_mesh(*small) == 1 and atlas.mesh_count == 2
+        atlas.generate(**QUICK)
+        for (V, F), i in ((mesh, 0), (small, 1)):
+            vmapping, indices, uvs, face_chart = atlas.get_output(i)
+            assert indices.shape == F.shape and vmapping.max() < len(V)
+            np.testing.assert_array_equal(V[vmapping[indices]], V[F])
+        with pytest.raises(neuv.Error, match="the atlas has 2 meshes"):
+            atlas.get_output(2)
+
+
+def test_input_types(unwrapped):
+    """Lists, float32 and int16 arrays go in like float64 and uint32 ones."""
+    V, F = torus(12, 6)
+    a = neuv.unwrap(V, F, **QUICK)
+    b = neuv.unwrap(V.tolist(), F.astype(np.int16).tolist(), **QUICK)
+    for x, y in zip(a, b):
+        np.testing.assert_array_equal(x, y)
+    c = neuv.unwrap(V.astype(np.float32), F.astype(np.uint16), **QUICK)
+    assert c[1].shape == F.shape
+
+
+def test_two_threads_two_atlases():
+    """The GIL is released during the calls: two atlases on two threads give
+    what they give one after the other."""
+    meshes = [torus(12, 6), torus(14, 7)]
+    alone = [neuv.unwrap(*m, **QUICK)[2] for m in meshes]
+    results = [None, None]
+
+    def work(i):
+        results[i] = neuv.unwrap(*meshes[i], **QUICK)[2]
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for a, b in zip(alone, results):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_pack_and_evaluate(mesh, unwrapped):
+    V, F = mesh
+    vmapping, indices, uvs, report = unwrapped
+    Vo = V[vmapping]  # the output mesh: per-vertex UVs, split along seams
+    metrics = neuv.evaluate(Vo, indices, uvs)
+    assert metrics["charts"] == report["charts"]
+    assert metrics == pytest.approx(report["metrics"], nan_ok=True)
+    # The same UVs per corner, on the input mesh.
+    assert neuv.evaluate(V, F, uvs[indices]) == pytest.approx(metrics, nan_ok=True)
+
+    # Charts scattered outside the square, then packed back in.
+    moved = uvs * 3 - 1
+    assert np.isnan(neuv.evaluate(Vo, indices, moved)["packing_efficiency"])
+    packed, pack_report = neuv.pack(Vo, indices, moved, resolution=256, return_report=True)
+    assert packed.shape == uvs.shape and packed.min() >= 0 and packed.max() <= 1
+    assert pack_report["charts"] == report["charts"] and pack_report["attempts"] >= 1
+    after = neuv.evaluate(Vo, indices, packed)
+    assert after["charts"] == report["charts"] and after["qce_mean"] == pytest.approx(metrics["qce_mean"], rel=1e-6)
+    corners = neuv.pack(V, F, moved[indices], resolution=256)
+    assert corners.shape == (len(F), 3, 2)
+    np.testing.assert_allclose(corners, packed[indices], rtol=0, atol=1e-12)
+
+
+def test_pack_charts_touching_at_a_vertex():
+    """Two triangles sharing only vertex 0 are two charts: packed apart, that
+    vertex needs two UVs, which per-corner UVs hold and per-vertex ones cannot."""
+    V = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [-1, 0, 0], [-1, -1, 0]], float)
+    F = np.array([[0, 1, 2], [0, 3, 4]])
+    uv = V[:, :2]
+    with pytest.raises(ValueError, match="vertex 0 joins charts .* pass per-corner UVs"):
+        neuv.pack(V, F, uv, resolution=64)
+    corners = neuv.pack(V, F, uv[F], resolution=64)
+    assert corners.min() >= 0 and corners.max() <= 1 and not np.array_equal(corners[0, 0], corners[1, 0])
+    assert neuv.evaluate(V, F, corners)["charts"] == 2
