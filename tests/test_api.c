@@ -52,6 +52,20 @@ static void decl_of(const grid *g, neuv_mesh_decl *d)
     d->index_count = g->ni;
 }
 
+/* Options for a short run: two charts, 30 training steps, no cache. */
+static neuv_unwrap_options quick_options(neuv_method method)
+{
+    neuv_unwrap_options uo;
+    neuv_unwrap_options_init(&uo);
+    uo.method = method;
+    uo.use_cache = 0;
+    uo.charts = 2;
+    uo.iters = 30;
+    uo.refine = 0;
+    uo.threads = 1;
+    return uo;
+}
+
 static void test_mesh_from_arrays(void)
 {
     /* Interleaved double positions with a stride, uint16 indices. */
@@ -152,12 +166,7 @@ static void test_stages_and_generate(void)
     decl_of(&g, &d);
 
     /* All at once. */
-    neuv_unwrap_options uo;
-    neuv_unwrap_options_init(&uo);
-    uo.method = NEUV_METHOD_LSCM;
-    uo.use_cache = 0;
-    uo.charts = 2;
-    uo.iters = 30;
+    neuv_unwrap_options uo = quick_options(NEUV_METHOD_LSCM);
     neuv_atlas *one = NULL;
     CHECK(neuv_atlas_create(&one) == NEUV_OK);
     CHECK(neuv_atlas_add_mesh(one, &d) == NEUV_OK);
@@ -242,12 +251,7 @@ static void test_two_meshes(void)
     CHECK(neuv_atlas_add_mesh(atlas, &da) == NEUV_OK);
     CHECK(neuv_atlas_add_mesh(atlas, &db) == NEUV_OK);
     CHECK_INT(neuv_atlas_mesh_count(atlas), 2);
-    neuv_unwrap_options uo;
-    neuv_unwrap_options_init(&uo);
-    uo.method = NEUV_METHOD_LSCM;
-    uo.use_cache = 0;
-    uo.charts = 2;
-    uo.iters = 30;
+    neuv_unwrap_options uo = quick_options(NEUV_METHOD_LSCM);
     CHECK(neuv_atlas_generate(atlas, &uo) == NEUV_OK);
     neuv_atlas_output oa, ob;
     CHECK(neuv_atlas_get_output(atlas, 0, &oa) == NEUV_OK);
@@ -282,13 +286,7 @@ static void test_callbacks_and_cancel(void)
     make_cylinder(&g, 24, 8, 0.5f, 0);
     neuv_mesh_decl d;
     decl_of(&g, &d);
-    neuv_unwrap_options uo;
-    neuv_unwrap_options_init(&uo);
-    uo.use_cache = 0;
-    uo.charts = 2;
-    uo.iters = 30;
-    uo.refine = 0;
-    uo.threads = 1;
+    neuv_unwrap_options uo = quick_options(NEUV_METHOD_NEURAL);
 
     /* Each atlas reports to its own callbacks. */
     counter c1 = {0, 0, 0}, c2 = {0, 0, 0};
@@ -355,13 +353,8 @@ static void test_two_threads(void)
     neuv_mesh_decl d1, d2;
     decl_of(&g1, &d1);
     decl_of(&g2, &d2);
-    neuv_unwrap_options uo;
-    neuv_unwrap_options_init(&uo);
-    uo.use_cache = 0;
-    uo.charts = 2;
-    uo.iters = 30;
+    neuv_unwrap_options uo = quick_options(NEUV_METHOD_NEURAL);
     uo.refine = 20;
-    uo.threads = 1;
     job seq[2] = {{&d1, uo, NEUV_OK, NULL, 0}, {&d2, uo, NEUV_OK, NULL, 0}};
     job par[2] = {{&d1, uo, NEUV_OK, NULL, 0}, {&d2, uo, NEUV_OK, NULL, 0}};
     run_job(&seq[0]);
@@ -384,13 +377,7 @@ static void test_models(void)
     make_cylinder(&g, 24, 8, 0.5f, 0);
     neuv_mesh_decl d;
     decl_of(&g, &d);
-    neuv_unwrap_options uo;
-    neuv_unwrap_options_init(&uo);
-    uo.use_cache = 0;
-    uo.charts = 2;
-    uo.iters = 30;
-    uo.refine = 0;
-    uo.threads = 1;
+    neuv_unwrap_options uo = quick_options(NEUV_METHOD_NEURAL);
     neuv_atlas *a = NULL;
     CHECK(neuv_atlas_create(&a) == NEUV_OK && neuv_atlas_add_mesh(a, &d) == NEUV_OK);
     neuv_model *model = NULL;
