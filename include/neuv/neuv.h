@@ -489,6 +489,43 @@ NEUV_API neuv_status neuv_write_preview(const neuv_mesh *mesh, const char *prefi
  * same folder, then a rename): a failure leaves no file behind. */
 NEUV_API neuv_status neuv_save_text(const char *path, const char *text);
 
+/* ---- cleaning and topology (neuv info) ---------------------------------- */
+
+/* neuv_mesh_clean with its messages (the warning about a non-orientable
+ * component left as it is) sent to cb (NULL: silent). Same repairs, report
+ * and errors. */
+NEUV_API neuv_status neuv_mesh_clean_cb(neuv_mesh *mesh, neuv_clean_report *report, const neuv_callbacks *cb);
+
+/* One connected component: faces joined across shared edges. */
+typedef struct neuv_component {
+    int faces, vertices, edges;
+    int boundary_loops;
+    int genus;                 /* (2 - euler - boundary_loops) / 2 */
+    int euler;                 /* vertices - edges + faces */
+    int closed;                /* 1: no boundary */
+} neuv_component;
+
+/* What a mesh is made of once cleaned (`neuv info`). */
+typedef struct neuv_topology {
+    int input_vertices, input_faces;   /* of the mesh as given */
+    int vertices, faces;               /* after cleaning */
+    int has_uv;
+    neuv_clean_report repairs;         /* what the cleaning did */
+    int component_count;
+    neuv_component *components;        /* component_count, numbered by their first face;
+                                          release with neuv_free */
+} neuv_topology;
+
+/* Cleans a copy of mesh (the repairs of neuv_mesh_clean, messages to cb,
+ * which may be NULL) and describes it. Unlike neuv_mesh_clean, a mesh whose
+ * faces are all dropped is no error: it has no components. On failure
+ * out->components is NULL. */
+NEUV_API neuv_status neuv_mesh_topology(const neuv_mesh *mesh, const neuv_callbacks *cb, neuv_topology *out);
+/* The topology as the JSON of `neuv info --json`: version, input (input_name),
+ * the counts, has_uv, the components and the repairs. Release with
+ * neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_topology_json(const neuv_topology *topology, const char *input_name);
+
 /* ---- one call ----------------------------------------------------------- */
 
 /* The older one-call interface: neuv_atlas_generate on a copy of mesh.
