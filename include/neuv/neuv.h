@@ -526,6 +526,25 @@ NEUV_API neuv_status neuv_mesh_topology(const neuv_mesh *mesh, const neuv_callba
  * neuv_free; NULL when memory runs out. */
 NEUV_API char *neuv_topology_json(const neuv_topology *topology, const char *input_name);
 
+/* ---- classic flattening (neuv flatten) ----------------------------------- */
+
+typedef struct neuv_flatten_report {
+    double seconds;            /* the flattening solve alone */
+    neuv_metrics metrics;      /* of the new UVs as the mesh holds them (not welded first) */
+} neuv_flatten_report;
+
+/* Flattens a mesh that is one topological disk (one component, one boundary
+ * loop, genus 0) by method NEUV_METHOD_LSCM (least squares conformal maps,
+ * free boundary) or NEUV_METHOD_HARMONIC (cotangent weights, boundary on a
+ * circle). The map, scaled uniformly into [0,1]^2 with its aspect kept,
+ * replaces mesh's UVs (one per vertex). mesh: cleaned (neuv_mesh_clean).
+ * report may be NULL. Errors, the mesh then unchanged: NEUV_ERR_INPUT for
+ * another method or a mesh that is not one disk (the message names what it
+ * is: "not a disk: 1 component, closed, genus 4"); NEUV_ERR_INTERNAL when a
+ * solve fails. */
+NEUV_API neuv_status neuv_flatten(neuv_mesh *mesh, neuv_method method, const neuv_callbacks *cb,
+                                  neuv_flatten_report *report);
+
 /* ---- one call ----------------------------------------------------------- */
 
 /* The older one-call interface: neuv_atlas_generate on a copy of mesh.
