@@ -545,6 +545,27 @@ typedef struct neuv_flatten_report {
 NEUV_API neuv_status neuv_flatten(neuv_mesh *mesh, neuv_method method, const neuv_callbacks *cb,
                                   neuv_flatten_report *report);
 
+/* ---- geodesic distances (neuv geodesics) --------------------------------- */
+
+/* Heat-method geodesic distances (Crane, Weischedel, Wardetzky 2013,
+ * "Geodesics in Heat") from vertex `source` to every vertex, in mesh's own
+ * numbering: computed on a cleaned copy (messages to cb, may be NULL) and
+ * read back through vertices at exactly equal positions.
+ * Inputs:  source in 0..vertex_count-1
+ * Outputs: distances (vertex_count, caller allocates): 0 at the source,
+ *          INFINITY where not reached (another component, or a vertex used
+ *          by no face); time (may be NULL): the diffusion time t used
+ *          (the mean edge length squared)
+ * Errors:  NEUV_ERR_INPUT for a source out of range or used by no face
+ *          (every vertex, when cleaning dropped every face). */
+NEUV_API neuv_status neuv_geodesic_distances(const neuv_mesh *mesh, int source, const neuv_callbacks *cb,
+                                             double *distances, double *time);
+/* The JSON of `neuv geodesics --json`: input (input_name), source,
+ * distances (count numbers, null where not finite) and seconds (the
+ * caller's timing). Release with neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_geodesics_json(const char *input_name, int source, const double *distances, int count,
+                                   double seconds);
+
 /* ---- one call ----------------------------------------------------------- */
 
 /* The older one-call interface: neuv_atlas_generate on a copy of mesh.
