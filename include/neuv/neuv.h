@@ -566,6 +566,50 @@ NEUV_API neuv_status neuv_geodesic_distances(const neuv_mesh *mesh, int source, 
 NEUV_API char *neuv_geodesics_json(const char *input_name, int source, const double *distances, int count,
                                    double seconds);
 
+/* ---- geometry operators (neuv operators) --------------------------------- */
+
+/* What the networks see of a mesh (DiffusionNet, Sharp et al. 2022): the
+ * cotangent Laplacian, lumped mass, the smallest Laplacian eigenpairs,
+ * spatial gradients and heat kernel signatures, of the cleaned mesh. */
+typedef struct neuv_operators neuv_operators;
+
+typedef struct neuv_operator_options {
+    int k;                     /* eigenpairs wanted, 1..4096 (64); at most the vertex count are computed */
+    int hks;                   /* heat kernel signature times, 1..1024 (16) */
+    int use_cache;             /* 1: read and write the on-disk cache ($XDG_CACHE_HOME/neuv) (1) */
+} neuv_operator_options;
+NEUV_API void neuv_operator_options_init(neuv_operator_options *o);
+
+/* Cleans a copy of mesh (messages to cb, may be NULL) and computes its
+ * operators, or reads them from the cache. o NULL: defaults. Errors:
+ * NEUV_ERR_INPUT for options out of range or a mesh without faces (before
+ * or after cleaning); NEUV_ERR_CANCELLED; a cache that cannot be read or
+ * written is never an error (the operators are computed). */
+NEUV_API neuv_status neuv_operators_compute(const neuv_mesh *mesh, const neuv_operator_options *o,
+                                            const neuv_callbacks *cb, neuv_operators **out);
+NEUV_API void neuv_operators_free(neuv_operators *ops);
+
+/* Pointers belong to ops. */
+typedef struct neuv_operators_info {
+    int vertices, faces;       /* of the cleaned mesh */
+    int k;                     /* eigenpairs computed */
+    const double *eigenvalues; /* k, ascending: L phi = lambda M phi */
+    int hks_count;
+    const double *hks_times;   /* hks_count, ascending */
+    double seconds_clean;
+    double seconds_laplacian, seconds_factor, seconds_eigen, seconds_gradients, seconds_hks; /* 0 on a cache hit */
+    double seconds_cache_load; /* 0 unless a cache hit */
+    double seconds_operators;  /* all of the operators, computed or read (not the cleaning) */
+    const char *cache_path;    /* the cache file; NULL when use_cache was 0 */
+    int cache_hit;             /* 1: read from cache_path; 0: computed (and written there) */
+} neuv_operators_info;
+NEUV_API void neuv_operators_get_info(const neuv_operators *ops, neuv_operators_info *out);
+/* The JSON of `neuv operators --json`: version, input (input_name), the
+ * counts, eigenvalues, HKS times, seconds (load_seconds: the caller's
+ * reading of the file) and the cache. Release with neuv_free; NULL when
+ * memory runs out. */
+NEUV_API char *neuv_operators_json(const neuv_operators *ops, const char *input_name, double load_seconds);
+
 /* ---- one call ----------------------------------------------------------- */
 
 /* The older one-call interface: neuv_atlas_generate on a copy of mesh.
