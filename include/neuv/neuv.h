@@ -610,6 +610,76 @@ NEUV_API void neuv_operators_get_info(const neuv_operators *ops, neuv_operators_
  * memory runs out. */
 NEUV_API char *neuv_operators_json(const neuv_operators *ops, const char *input_name, double load_seconds);
 
+/* ---- other triangulations of a surface (neuv remesh) --------------------- */
+
+/* Simplification by edge collapse (meshoptimizer's quadric simplifier)
+ * towards ratio * faces, ratio in (0, 1]: the positions kept are exactly
+ * (bit for bit) input positions, in the input's order; UV seams are kept
+ * (the count may stay above the target where seams or borders stop
+ * collapses). Messages (the counts reached) to cb, may be NULL. *out: a new
+ * mesh. NEUV_ERR_INPUT for a ratio out of range. */
+NEUV_API neuv_status neuv_mesh_simplify(const neuv_mesh *mesh, double ratio, const neuv_callbacks *cb,
+                                        neuv_mesh **out);
+
+typedef enum neuv_subdivision {
+    NEUV_SUBDIVIDE_MIDPOINT = 0, /* new vertices at edge midpoints: the same surface */
+    NEUV_SUBDIVIDE_LOOP = 1      /* Loop (1987) smoothing; UVs still interpolated linearly */
+} neuv_subdivision;
+
+/* `rounds` (0..8) rounds of 1-to-4 subdivision: faces * 4^rounds faces; old
+ * vertices keep their indices, corner UVs are interpolated (a seam stays a
+ * seam). *out: a new mesh. NEUV_ERR_INPUT for rounds out of range, a face
+ * with a repeated vertex or a mesh too large to subdivide. */
+NEUV_API neuv_status neuv_mesh_subdivide(const neuv_mesh *mesh, int rounds, neuv_subdivision scheme,
+                                         neuv_mesh **out);
+
+typedef struct neuv_isotropic_options {
+    double edge_length;        /* > 0: target edge length L in the mesh's units; 0: from faces (0) */
+    int faces;                 /* used when edge_length is 0: about this many faces, >= 4 (0) */
+    int iterations;            /* rounds of split, collapse, flip, relax, project (5) */
+    double feature_degrees;    /* edges with a sharper dihedral angle are kept as polylines;
+                                  >= 180: none (60) */
+} neuv_isotropic_options;
+NEUV_API void neuv_isotropic_options_init(neuv_isotropic_options *o);
+
+typedef struct neuv_isotropic_report {
+    int faces_in, faces_out;
+    double edge_length;        /* the L of the last remeshing */
+    int feature_edges_in;      /* input edges sharper than feature_degrees */
+    int feature_edges_out;     /* output edges on those polylines */
+    int rounds;                /* remeshings run (1 to 3 with a face target) */
+    double max_distance;       /* largest distance of an output vertex to the input surface */
+    double diagonal;           /* the input's bounding-box diagonal, to read max_distance against */
+} neuv_isotropic_report;
+
+/* Isotropic remeshing (Botsch and Kobbelt 2004, through CGAL): a new
+ * triangulation with edges of one length that shares no vertex with the
+ * input off its feature and boundary polylines; every vertex lies on the
+ * input surface. With a face target, L is derived from the area and
+ * corrected up to twice towards it. mesh: manifold and consistently
+ * oriented (as neuv_mesh_clean leaves it); UVs are not carried over.
+ * *out: a new mesh. report may be NULL. NEUV_ERR_INPUT for neither or a bad
+ * target, or a non-manifold or inconsistently oriented mesh. */
+NEUV_API neuv_status neuv_mesh_remesh_isotropic(const neuv_mesh *mesh, const neuv_isotropic_options *o,
+                                                const neuv_callbacks *cb, neuv_mesh **out,
+                                                neuv_isotropic_report *report);
+
+typedef struct neuv_jitter_report {
+    int moved_vertices;        /* interior vertices moved within the surface */
+    int slid_vertices;         /* boundary vertices slid along a straight boundary */
+    int fixed_vertices;        /* kept: on a feature, a UV seam or a boundary corner */
+    int flipped_edges;
+    double max_deviation;      /* largest distance of a moved vertex to the input surface */
+} neuv_jitter_report;
+
+/* Another triangulation of the same surface, in place: interior vertices
+ * slide within the surface by random offsets (up to 0.3 of their shortest
+ * edge, projected back onto it), then nearly flat edge pairs are flipped;
+ * features, UV seams and boundary corners stay, UVs follow. Deterministic
+ * for a seed. mesh: cleaned. report may be NULL. On failure mesh is
+ * unchanged. */
+NEUV_API neuv_status neuv_mesh_jitter(neuv_mesh *mesh, unsigned long long seed, neuv_jitter_report *report);
+
 /* ---- one call ----------------------------------------------------------- */
 
 /* The older one-call interface: neuv_atlas_generate on a copy of mesh.
