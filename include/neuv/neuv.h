@@ -680,6 +680,67 @@ typedef struct neuv_jitter_report {
  * unchanged. */
 NEUV_API neuv_status neuv_mesh_jitter(neuv_mesh *mesh, unsigned long long seed, neuv_jitter_report *report);
 
+/* ---- PatchNet charts alone (neuv segment) -------------------------------- */
+
+typedef enum neuv_features {
+    NEUV_FEATURES_HKS = 0,     /* heat kernel signatures (default): independent of pose and triangulation */
+    NEUV_FEATURES_XYZ = 1      /* positions */
+} neuv_features;
+
+typedef struct neuv_segment_options {
+    neuv_preset preset;
+    int charts;                /* 0: automatic (default); K in 1..100000: K patches before disk cutting */
+    double max_distortion;     /* automatic: split until every chart's LSCM qce_mean is below it, > 1 (1.15) */
+    neuv_features features;    /* PatchNet's input */
+    int iters;                 /* training steps; 0: the preset's */
+    unsigned long long seed;   /* (1) */
+    int threads;               /* 0: the machine's */
+    int use_cache;             /* 1: operators through the on-disk cache (1) */
+} neuv_segment_options;
+NEUV_API void neuv_segment_options_init(neuv_segment_options *o);
+
+typedef struct neuv_segment_report {
+    int vertices, faces;       /* of the mesh segmented */
+    unsigned long long seed;
+    neuv_features features;
+    int patches;               /* PatchNet's outputs K */
+    int label_charts;          /* charts straight from the per-face labels */
+    int splits;                /* charts split by the automatic loop */
+    int charts;                /* final */
+    int iterations;            /* training steps run */
+    double iterations_per_second;
+    double loss, loss_cos, loss_geo; /* at the last step */
+    double worst_lscm_qce;     /* the largest LSCM qce_mean of a chart */
+    int lscm_flipped;          /* LSCM flipped faces over all charts */
+    int cache_hit;             /* operators read from the cache */
+    double seconds_operators, seconds_geodesics, seconds_train, seconds_chart_check;
+} neuv_segment_report;
+
+/* PatchNet's charts of mesh (stage 1 of an unwrap, alone): the network
+ * trained on the mesh, its labels cut into topological disks. mesh:
+ * cleaned (neuv_mesh_clean). o NULL: defaults. Progress ("patches",
+ * "charts") and messages to cb (may be NULL).
+ * Outputs: face_chart (face_count, caller allocates): the chart of each
+ *          face, 0..*chart_count-1; report (may be NULL)
+ * Errors:  NEUV_ERR_INPUT for options out of range or an unusable mesh,
+ *          NEUV_ERR_CANCELLED. */
+NEUV_API neuv_status neuv_segment(const neuv_mesh *mesh, const neuv_segment_options *o, const neuv_callbacks *cb,
+                                  int *face_chart, int *chart_count, neuv_segment_report *report);
+/* The JSON of `neuv segment --json`: input and output (the caller's file
+ * names), the report, and seconds (load_seconds and total_seconds: the
+ * caller's). Release with neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_segment_report_json(const neuv_segment_report *report, const char *input_name,
+                                        const char *output_name, double load_seconds, double total_seconds);
+
+/* Writes mesh with a label per face (labels: face_count values >= 0, e.g.
+ * chart ids), atomically, by extension: .ply an ASCII PLY whose faces carry
+ * an `int chart` property; .obj one group `g chart_N` per label.
+ * NEUV_ERR_INPUT for another extension or a negative label; NEUV_ERR_IO. */
+NEUV_API neuv_status neuv_save_face_labels(const neuv_mesh *mesh, const int *labels, const char *path);
+/* A PNG of mesh from four views, each face coloured by its label
+ * (face_count values), 1024 px. NEUV_ERR_IO when it cannot be written. */
+NEUV_API neuv_status neuv_write_label_preview(const neuv_mesh *mesh, const int *labels, const char *path);
+
 /* ---- one call ----------------------------------------------------------- */
 
 /* The older one-call interface: neuv_atlas_generate on a copy of mesh.
