@@ -741,6 +741,44 @@ NEUV_API neuv_status neuv_save_face_labels(const neuv_mesh *mesh, const int *lab
  * (face_count values), 1024 px. NEUV_ERR_IO when it cannot be written. */
 NEUV_API neuv_status neuv_write_label_preview(const neuv_mesh *mesh, const int *labels, const char *path);
 
+/* ---- two UV maps of one surface (neuv compare) --------------------------- */
+
+#define NEUV_WORST_CHARTS 5
+
+/* One of B's charts whose UVs are farthest from A's. */
+typedef struct neuv_chart_mismatch {
+    int b_chart;               /* B's chart (UV-connected component) */
+    int a_chart;               /* the A chart holding most of its area */
+    int corners;               /* its corners compared */
+    double uv_mean;            /* their mean UV distance */
+} neuv_chart_mismatch;
+
+typedef struct neuv_uv_comparison {
+    double uv_mean, uv_p95, uv_max;             /* UV distance (atlas units) in the matched chart */
+    double nearest_mean, nearest_p95, nearest_max; /* at the closest point whatever its chart */
+    double across_seam;        /* share of B's corners past their matched chart's seam */
+    double chart_agreement;    /* share of B's area whose chart agrees with A's */
+    double chart_agreement_faces; /* the same share counted in faces */
+    int faces_a, faces_b, charts_a, charts_b;
+    int vertices_compared;     /* distinct (vertex, UV) corners of B */
+    double max_surface_distance; /* largest distance of a compared B vertex to A's surface */
+    int worst_count;           /* entries of worst in use */
+    neuv_chart_mismatch worst[NEUV_WORST_CHARTS]; /* largest mean UV distance first */
+    neuv_metrics b_metrics;    /* of B's UVs as B holds them (not welded first) */
+} neuv_uv_comparison;
+
+/* UV consistency of two UV maps of the same surface, possibly on two
+ * triangulations of it (docs/transfer.md "Measuring it"): for every corner
+ * of B, A's UV at the same point of the surface, in the A chart matched to
+ * B's chart (past that chart's seam, its map extended), and how much of B's
+ * surface lies in the chart matched to its own. Messages to cb (may be
+ * NULL). NEUV_ERR_INPUT when a mesh has no faces or no UVs. */
+NEUV_API neuv_status neuv_compare_uvs(const neuv_mesh *a, const neuv_mesh *b, const neuv_callbacks *cb,
+                                      neuv_uv_comparison *out);
+/* The JSON of `neuv compare --json`, naming the two files. Release with
+ * neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_uv_comparison_json(const neuv_uv_comparison *c, const char *a_name, const char *b_name);
+
 /* ---- one call ----------------------------------------------------------- */
 
 /* The older one-call interface: neuv_atlas_generate on a copy of mesh.
