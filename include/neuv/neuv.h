@@ -779,6 +779,39 @@ NEUV_API neuv_status neuv_compare_uvs(const neuv_mesh *a, const neuv_mesh *b, co
  * neuv_free; NULL when memory runs out. */
 NEUV_API char *neuv_uv_comparison_json(const neuv_uv_comparison *c, const char *a_name, const char *b_name);
 
+/* ---- checkpoint files (neuv inspect) ------------------------------------- */
+
+/* A .neuv file as stored: a JSON configuration and named float32 tensors
+ * (any checkpoint, a model's or not). */
+typedef struct neuv_checkpoint neuv_checkpoint;
+
+/* Reads and validates the whole file. NEUV_ERR_INPUT with a one-line
+ * message for malformed content (bad magic, wrong version, truncated, CRC
+ * mismatch, trailing bytes, a tensor twice); NEUV_ERR_IO when it cannot be
+ * read. */
+NEUV_API neuv_status neuv_checkpoint_load(const char *path, neuv_checkpoint **out);
+NEUV_API void neuv_checkpoint_free(neuv_checkpoint *c);
+/* The file's format version. */
+NEUV_API unsigned neuv_checkpoint_version(const neuv_checkpoint *c);
+/* The JSON configuration, verbatim (belongs to c). */
+NEUV_API const char *neuv_checkpoint_config(const neuv_checkpoint *c);
+NEUV_API int neuv_checkpoint_tensor_count(const neuv_checkpoint *c);
+/* Values over all tensors. */
+NEUV_API long long neuv_checkpoint_parameter_count(const neuv_checkpoint *c);
+
+typedef struct neuv_tensor_info {
+    const char *name;          /* belongs to the checkpoint */
+    int rows, cols;
+    double min, max, rms;      /* over the finite values; NaN (min, max) when none is */
+    long long nonfinite;       /* values that are NaN or infinite */
+} neuv_tensor_info;
+/* Tensor `index` (0..tensor_count-1, in file order). NEUV_ERR_INPUT out of range. */
+NEUV_API neuv_status neuv_checkpoint_get_tensor(const neuv_checkpoint *c, int index, neuv_tensor_info *out);
+/* The JSON of `neuv inspect --json`: file (file_name), version, config,
+ * parameters, and each tensor's name, shape and value range. Release with
+ * neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_checkpoint_json(const neuv_checkpoint *c, const char *file_name);
+
 /* ---- one call ----------------------------------------------------------- */
 
 /* The older one-call interface: neuv_atlas_generate on a copy of mesh.
