@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks that the folders of src/ form layers.
 
-usage: check_layers.py [--cli-public-only] [--graph] [SRC]   (SRC: the src/ folder)
+usage: check_layers.py [--graph] [SRC]   (SRC: the src/ folder)
 
 Reads every `#include "..."` in SRC (.c, .h, .cpp) and fails (exit 1, one line
 per problem) on
@@ -12,8 +12,8 @@ per problem) on
       SAME_LEVEL says so,
   (c) an include of a header that does not exist (under SRC, or under
       SRC/../include for neuv/...),
-  (d) with --cli-public-only: an include in src/cli of anything but neuv/...
-      and cli/... (without the flag, only counted).
+  (d) an include in src/cli of anything but neuv/... and cli/...: the
+      command line is a program on the public API like any other.
 A folder of SRC that LEVEL does not name is a problem too: a new folder must
 take a place in the order. --graph prints the folder graph (include counts).
 """
@@ -107,10 +107,9 @@ def cycles(graph):
 
 
 def main(argv):
-    cli_public_only = "--cli-public-only" in argv
     show_graph = "--graph" in argv
     args = [a for a in argv if not a.startswith("--")]
-    if len(args) > 1 or any(a not in ("--cli-public-only", "--graph") for a in argv if a.startswith("--")):
+    if len(args) > 1 or any(a != "--graph" for a in argv if a.startswith("--")):
         print(__doc__.strip().splitlines()[2], file=sys.stderr)
         return 2
     src = os.path.abspath(args[0] if args else os.path.join(os.path.dirname(__file__), "..", "src"))
@@ -166,17 +165,13 @@ def main(argv):
         problems.append("cycle between folders " + ", ".join(comp) + ": " + "; ".join(edges))
 
     # (d) the CLI through the public API only
-    if cli_public_only:
-        problems += [f"{c}: the CLI may include only neuv/... and cli/..." for c in cli_private]
+    problems += [f"{c}: the CLI may include only neuv/... and cli/..." for c in cli_private]
 
     if show_graph:
         for frm in sorted(graph, key=lambda f: (LEVEL.get(f, 99), f)):
             tos = sorted(graph[frm], key=lambda t: (LEVEL.get(t, 99), t))
             print(f"{frm:9} -> " + ", ".join(f"{t} ({counts[(frm, t)]})" for t in tos))
 
-    if not cli_public_only and cli_private:
-        print(f"note: {len(cli_private)} includes in src/cli reach past the public API "
-              f"(--cli-public-only makes them errors)")
     if problems:
         print(f"check_layers: {len(problems)} problem(s):")
         for p in problems:

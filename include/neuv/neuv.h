@@ -493,6 +493,329 @@ NEUV_API neuv_status neuv_write_preview(const neuv_mesh *mesh, const char *prefi
  * same folder, then a rename): a failure leaves no file behind. */
 NEUV_API neuv_status neuv_save_text(const char *path, const char *text);
 
+/* ---- cleaning and topology (neuv info) ---------------------------------- */
+
+/* neuv_mesh_clean with its messages (the warning about a non-orientable
+ * component left as it is) sent to cb (NULL: silent). Same repairs, report
+ * and errors. */
+NEUV_API neuv_status neuv_mesh_clean_cb(neuv_mesh *mesh, neuv_clean_report *report, const neuv_callbacks *cb);
+
+/* One connected component: faces joined across shared edges. */
+typedef struct neuv_component {
+    int faces, vertices, edges;
+    int boundary_loops;
+    int genus;                 /* (2 - euler - boundary_loops) / 2 */
+    int euler;                 /* vertices - edges + faces */
+    int closed;                /* 1: no boundary */
+} neuv_component;
+
+/* What a mesh is made of once cleaned (`neuv info`). */
+typedef struct neuv_topology {
+    int input_vertices, input_faces;   /* of the mesh as given */
+    int vertices, faces;               /* after cleaning */
+    int has_uv;
+    neuv_clean_report repairs;         /* what the cleaning did */
+    int component_count;
+    neuv_component *components;        /* component_count, numbered by their first face;
+                                          release with neuv_free */
+} neuv_topology;
+
+/* Cleans a copy of mesh (the repairs of neuv_mesh_clean, messages to cb,
+ * which may be NULL) and describes it. Unlike neuv_mesh_clean, a mesh whose
+ * faces are all dropped is no error: it has no components. On failure
+ * out->components is NULL. */
+NEUV_API neuv_status neuv_mesh_topology(const neuv_mesh *mesh, const neuv_callbacks *cb, neuv_topology *out);
+/* The topology as the JSON of `neuv info --json`: version, input (input_name),
+ * the counts, has_uv, the components and the repairs. Release with
+ * neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_topology_json(const neuv_topology *topology, const char *input_name);
+
+/* ---- classic flattening (neuv flatten) ----------------------------------- */
+
+typedef struct neuv_flatten_report {
+    double seconds;            /* the flattening solve alone */
+    neuv_metrics metrics;      /* of the new UVs as the mesh holds them (not welded first) */
+} neuv_flatten_report;
+
+/* Flattens a mesh that is one topological disk (one component, one boundary
+ * loop, genus 0) by method NEUV_METHOD_LSCM (least squares conformal maps,
+ * free boundary) or NEUV_METHOD_HARMONIC (cotangent weights, boundary on a
+ * circle). The map, scaled uniformly into [0,1]^2 with its aspect kept,
+ * replaces mesh's UVs (one per vertex). mesh: cleaned (neuv_mesh_clean).
+ * report may be NULL. Errors, the mesh then unchanged: NEUV_ERR_INPUT for
+ * another method or a mesh that is not one disk (the message names what it
+ * is: "not a disk: 1 component, closed, genus 4"); NEUV_ERR_INTERNAL when a
+ * solve fails. */
+NEUV_API neuv_status neuv_flatten(neuv_mesh *mesh, neuv_method method, const neuv_callbacks *cb,
+                                  neuv_flatten_report *report);
+
+/* ---- geodesic distances (neuv geodesics) --------------------------------- */
+
+/* Heat-method geodesic distances (Crane, Weischedel, Wardetzky 2013,
+ * "Geodesics in Heat") from vertex `source` to every vertex, in mesh's own
+ * numbering: computed on a cleaned copy (messages to cb, may be NULL) and
+ * read back through vertices at exactly equal positions.
+ * Inputs:  source in 0..vertex_count-1
+ * Outputs: distances (vertex_count, caller allocates): 0 at the source,
+ *          INFINITY where not reached (another component, or a vertex used
+ *          by no face); time (may be NULL): the diffusion time t used
+ *          (the mean edge length squared)
+ * Errors:  NEUV_ERR_INPUT for a source out of range or used by no face
+ *          (every vertex, when cleaning dropped every face). */
+NEUV_API neuv_status neuv_geodesic_distances(const neuv_mesh *mesh, int source, const neuv_callbacks *cb,
+                                             double *distances, double *time);
+/* The JSON of `neuv geodesics --json`: input (input_name), source,
+ * distances (count numbers, null where not finite) and seconds (the
+ * caller's timing). Release with neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_geodesics_json(const char *input_name, int source, const double *distances, int count,
+                                   double seconds);
+
+/* ---- geometry operators (neuv operators) --------------------------------- */
+
+/* What the networks see of a mesh (DiffusionNet, Sharp et al. 2022): the
+ * cotangent Laplacian, lumped mass, the smallest Laplacian eigenpairs,
+ * spatial gradients and heat kernel signatures, of the cleaned mesh. */
+typedef struct neuv_operators neuv_operators;
+
+typedef struct neuv_operator_options {
+    int k;                     /* eigenpairs wanted, 1..4096 (64); at most the vertex count are computed */
+    int hks;                   /* heat kernel signature times, 1..1024 (16) */
+    int use_cache;             /* 1: read and write the on-disk cache ($XDG_CACHE_HOME/neuv) (1) */
+} neuv_operator_options;
+NEUV_API void neuv_operator_options_init(neuv_operator_options *o);
+
+/* Cleans a copy of mesh (messages to cb, may be NULL) and computes its
+ * operators, or reads them from the cache. o NULL: defaults. Errors:
+ * NEUV_ERR_INPUT for options out of range or a mesh without faces (before
+ * or after cleaning); NEUV_ERR_CANCELLED; a cache that cannot be read or
+ * written is never an error (the operators are computed). */
+NEUV_API neuv_status neuv_operators_compute(const neuv_mesh *mesh, const neuv_operator_options *o,
+                                            const neuv_callbacks *cb, neuv_operators **out);
+NEUV_API void neuv_operators_free(neuv_operators *ops);
+
+/* Pointers belong to ops. */
+typedef struct neuv_operators_info {
+    int vertices, faces;       /* of the cleaned mesh */
+    int k;                     /* eigenpairs computed */
+    const double *eigenvalues; /* k, ascending: L phi = lambda M phi */
+    int hks_count;
+    const double *hks_times;   /* hks_count, ascending */
+    double seconds_clean;
+    double seconds_laplacian, seconds_factor, seconds_eigen, seconds_gradients, seconds_hks; /* 0 on a cache hit */
+    double seconds_cache_load; /* 0 unless a cache hit */
+    double seconds_operators;  /* all of the operators, computed or read (not the cleaning) */
+    const char *cache_path;    /* the cache file; NULL when use_cache was 0 */
+    int cache_hit;             /* 1: read from cache_path; 0: computed (and written there) */
+} neuv_operators_info;
+NEUV_API void neuv_operators_get_info(const neuv_operators *ops, neuv_operators_info *out);
+/* The JSON of `neuv operators --json`: version, input (input_name), the
+ * counts, eigenvalues, HKS times, seconds (load_seconds: the caller's
+ * reading of the file) and the cache. Release with neuv_free; NULL when
+ * memory runs out. */
+NEUV_API char *neuv_operators_json(const neuv_operators *ops, const char *input_name, double load_seconds);
+
+/* ---- other triangulations of a surface (neuv remesh) --------------------- */
+
+/* Simplification by edge collapse (meshoptimizer's quadric simplifier)
+ * towards ratio * faces, ratio in (0, 1]: the positions kept are exactly
+ * (bit for bit) input positions, in the input's order; UV seams are kept
+ * (the count may stay above the target where seams or borders stop
+ * collapses). Messages (the counts reached) to cb, may be NULL. *out: a new
+ * mesh. NEUV_ERR_INPUT for a ratio out of range. */
+NEUV_API neuv_status neuv_mesh_simplify(const neuv_mesh *mesh, double ratio, const neuv_callbacks *cb,
+                                        neuv_mesh **out);
+
+typedef enum neuv_subdivision {
+    NEUV_SUBDIVIDE_MIDPOINT = 0, /* new vertices at edge midpoints: the same surface */
+    NEUV_SUBDIVIDE_LOOP = 1      /* Loop (1987) smoothing; UVs still interpolated linearly */
+} neuv_subdivision;
+
+/* `rounds` (0..8) rounds of 1-to-4 subdivision: faces * 4^rounds faces; old
+ * vertices keep their indices, corner UVs are interpolated (a seam stays a
+ * seam). *out: a new mesh. NEUV_ERR_INPUT for rounds out of range, a face
+ * with a repeated vertex or a mesh too large to subdivide. */
+NEUV_API neuv_status neuv_mesh_subdivide(const neuv_mesh *mesh, int rounds, neuv_subdivision scheme,
+                                         neuv_mesh **out);
+
+typedef struct neuv_isotropic_options {
+    double edge_length;        /* > 0: target edge length L in the mesh's units; 0: from faces (0) */
+    int faces;                 /* used when edge_length is 0: about this many faces, >= 4 (0) */
+    int iterations;            /* rounds of split, collapse, flip, relax, project (5) */
+    double feature_degrees;    /* edges with a sharper dihedral angle are kept as polylines;
+                                  >= 180: none (60) */
+} neuv_isotropic_options;
+NEUV_API void neuv_isotropic_options_init(neuv_isotropic_options *o);
+
+typedef struct neuv_isotropic_report {
+    int faces_in, faces_out;
+    double edge_length;        /* the L of the last remeshing */
+    int feature_edges_in;      /* input edges sharper than feature_degrees */
+    int feature_edges_out;     /* output edges on those polylines */
+    int rounds;                /* remeshings run (1 to 3 with a face target) */
+    double max_distance;       /* largest distance of an output vertex to the input surface */
+    double diagonal;           /* the input's bounding-box diagonal, to read max_distance against */
+} neuv_isotropic_report;
+
+/* Isotropic remeshing (Botsch and Kobbelt 2004, through CGAL): a new
+ * triangulation with edges of one length that shares no vertex with the
+ * input off its feature and boundary polylines; every vertex lies on the
+ * input surface. With a face target, L is derived from the area and
+ * corrected up to twice towards it. mesh: manifold and consistently
+ * oriented (as neuv_mesh_clean leaves it); UVs are not carried over.
+ * *out: a new mesh. report may be NULL. NEUV_ERR_INPUT for neither or a bad
+ * target, or a non-manifold or inconsistently oriented mesh. */
+NEUV_API neuv_status neuv_mesh_remesh_isotropic(const neuv_mesh *mesh, const neuv_isotropic_options *o,
+                                                const neuv_callbacks *cb, neuv_mesh **out,
+                                                neuv_isotropic_report *report);
+
+typedef struct neuv_jitter_report {
+    int moved_vertices;        /* interior vertices moved within the surface */
+    int slid_vertices;         /* boundary vertices slid along a straight boundary */
+    int fixed_vertices;        /* kept: on a feature, a UV seam or a boundary corner */
+    int flipped_edges;
+    double max_deviation;      /* largest distance of a moved vertex to the input surface */
+} neuv_jitter_report;
+
+/* Another triangulation of the same surface, in place: interior vertices
+ * slide within the surface by random offsets (up to 0.3 of their shortest
+ * edge, projected back onto it), then nearly flat edge pairs are flipped;
+ * features, UV seams and boundary corners stay, UVs follow. Deterministic
+ * for a seed. mesh: cleaned. report may be NULL. On failure mesh is
+ * unchanged. */
+NEUV_API neuv_status neuv_mesh_jitter(neuv_mesh *mesh, unsigned long long seed, neuv_jitter_report *report);
+
+/* ---- PatchNet charts alone (neuv segment) -------------------------------- */
+
+typedef enum neuv_features {
+    NEUV_FEATURES_HKS = 0,     /* heat kernel signatures (default): independent of pose and triangulation */
+    NEUV_FEATURES_XYZ = 1      /* positions */
+} neuv_features;
+
+typedef struct neuv_segment_options {
+    neuv_preset preset;
+    int charts;                /* 0: automatic (default); K in 1..100000: K patches before disk cutting */
+    double max_distortion;     /* automatic: split until every chart's LSCM qce_mean is below it, > 1 (1.15) */
+    neuv_features features;    /* PatchNet's input */
+    int iters;                 /* training steps; 0: the preset's */
+    unsigned long long seed;   /* (1) */
+    int threads;               /* 0: the machine's */
+    int use_cache;             /* 1: operators through the on-disk cache (1) */
+} neuv_segment_options;
+NEUV_API void neuv_segment_options_init(neuv_segment_options *o);
+
+typedef struct neuv_segment_report {
+    int vertices, faces;       /* of the mesh segmented */
+    unsigned long long seed;
+    neuv_features features;
+    int patches;               /* PatchNet's outputs K */
+    int label_charts;          /* charts straight from the per-face labels */
+    int splits;                /* charts split by the automatic loop */
+    int charts;                /* final */
+    int iterations;            /* training steps run */
+    double iterations_per_second;
+    double loss, loss_cos, loss_geo; /* at the last step */
+    double worst_lscm_qce;     /* the largest LSCM qce_mean of a chart */
+    int lscm_flipped;          /* LSCM flipped faces over all charts */
+    int cache_hit;             /* operators read from the cache */
+    double seconds_operators, seconds_geodesics, seconds_train, seconds_chart_check;
+} neuv_segment_report;
+
+/* PatchNet's charts of mesh (stage 1 of an unwrap, alone): the network
+ * trained on the mesh, its labels cut into topological disks. mesh:
+ * cleaned (neuv_mesh_clean). o NULL: defaults. Progress ("patches",
+ * "charts") and messages to cb (may be NULL).
+ * Outputs: face_chart (face_count, caller allocates): the chart of each
+ *          face, 0..*chart_count-1; report (may be NULL)
+ * Errors:  NEUV_ERR_INPUT for options out of range or an unusable mesh,
+ *          NEUV_ERR_CANCELLED. */
+NEUV_API neuv_status neuv_segment(const neuv_mesh *mesh, const neuv_segment_options *o, const neuv_callbacks *cb,
+                                  int *face_chart, int *chart_count, neuv_segment_report *report);
+/* The JSON of `neuv segment --json`: input and output (the caller's file
+ * names), the report, and seconds (load_seconds and total_seconds: the
+ * caller's). Release with neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_segment_report_json(const neuv_segment_report *report, const char *input_name,
+                                        const char *output_name, double load_seconds, double total_seconds);
+
+/* Writes mesh with a label per face (labels: face_count values >= 0, e.g.
+ * chart ids), atomically, by extension: .ply an ASCII PLY whose faces carry
+ * an `int chart` property; .obj one group `g chart_N` per label.
+ * NEUV_ERR_INPUT for another extension or a negative label; NEUV_ERR_IO. */
+NEUV_API neuv_status neuv_save_face_labels(const neuv_mesh *mesh, const int *labels, const char *path);
+/* A PNG of mesh from four views, each face coloured by its label
+ * (face_count values), 1024 px. NEUV_ERR_IO when it cannot be written. */
+NEUV_API neuv_status neuv_write_label_preview(const neuv_mesh *mesh, const int *labels, const char *path);
+
+/* ---- two UV maps of one surface (neuv compare) --------------------------- */
+
+#define NEUV_WORST_CHARTS 5
+
+/* One of B's charts whose UVs are farthest from A's. */
+typedef struct neuv_chart_mismatch {
+    int b_chart;               /* B's chart (UV-connected component) */
+    int a_chart;               /* the A chart holding most of its area */
+    int corners;               /* its corners compared */
+    double uv_mean;            /* their mean UV distance */
+} neuv_chart_mismatch;
+
+typedef struct neuv_uv_comparison {
+    double uv_mean, uv_p95, uv_max;             /* UV distance (atlas units) in the matched chart */
+    double nearest_mean, nearest_p95, nearest_max; /* at the closest point whatever its chart */
+    double across_seam;        /* share of B's corners past their matched chart's seam */
+    double chart_agreement;    /* share of B's area whose chart agrees with A's */
+    double chart_agreement_faces; /* the same share counted in faces */
+    int faces_a, faces_b, charts_a, charts_b;
+    int vertices_compared;     /* distinct (vertex, UV) corners of B */
+    double max_surface_distance; /* largest distance of a compared B vertex to A's surface */
+    int worst_count;           /* entries of worst in use */
+    neuv_chart_mismatch worst[NEUV_WORST_CHARTS]; /* largest mean UV distance first */
+    neuv_metrics b_metrics;    /* of B's UVs as B holds them (not welded first) */
+} neuv_uv_comparison;
+
+/* UV consistency of two UV maps of the same surface, possibly on two
+ * triangulations of it (docs/transfer.md "Measuring it"): for every corner
+ * of B, A's UV at the same point of the surface, in the A chart matched to
+ * B's chart (past that chart's seam, its map extended), and how much of B's
+ * surface lies in the chart matched to its own. Messages to cb (may be
+ * NULL). NEUV_ERR_INPUT when a mesh has no faces or no UVs. */
+NEUV_API neuv_status neuv_compare_uvs(const neuv_mesh *a, const neuv_mesh *b, const neuv_callbacks *cb,
+                                      neuv_uv_comparison *out);
+/* The JSON of `neuv compare --json`, naming the two files. Release with
+ * neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_uv_comparison_json(const neuv_uv_comparison *c, const char *a_name, const char *b_name);
+
+/* ---- checkpoint files (neuv inspect) ------------------------------------- */
+
+/* A .neuv file as stored: a JSON configuration and named float32 tensors
+ * (any checkpoint, a model's or not). */
+typedef struct neuv_checkpoint neuv_checkpoint;
+
+/* Reads and validates the whole file. NEUV_ERR_INPUT with a one-line
+ * message for malformed content (bad magic, wrong version, truncated, CRC
+ * mismatch, trailing bytes, a tensor twice); NEUV_ERR_IO when it cannot be
+ * read. */
+NEUV_API neuv_status neuv_checkpoint_load(const char *path, neuv_checkpoint **out);
+NEUV_API void neuv_checkpoint_free(neuv_checkpoint *c);
+/* The file's format version. */
+NEUV_API unsigned neuv_checkpoint_version(const neuv_checkpoint *c);
+/* The JSON configuration, verbatim (belongs to c). */
+NEUV_API const char *neuv_checkpoint_config(const neuv_checkpoint *c);
+NEUV_API int neuv_checkpoint_tensor_count(const neuv_checkpoint *c);
+/* Values over all tensors. */
+NEUV_API long long neuv_checkpoint_parameter_count(const neuv_checkpoint *c);
+
+typedef struct neuv_tensor_info {
+    const char *name;          /* belongs to the checkpoint */
+    int rows, cols;
+    double min, max, rms;      /* over the finite values; NaN (min, max) when none is */
+    long long nonfinite;       /* values that are NaN or infinite */
+} neuv_tensor_info;
+/* Tensor `index` (0..tensor_count-1, in file order). NEUV_ERR_INPUT out of range. */
+NEUV_API neuv_status neuv_checkpoint_get_tensor(const neuv_checkpoint *c, int index, neuv_tensor_info *out);
+/* The JSON of `neuv inspect --json`: file (file_name), version, config,
+ * parameters, and each tensor's name, shape and value range. Release with
+ * neuv_free; NULL when memory runs out. */
+NEUV_API char *neuv_checkpoint_json(const neuv_checkpoint *c, const char *file_name);
+
 /* ---- one call ----------------------------------------------------------- */
 
 /* The older one-call interface: neuv_atlas_generate on a copy of mesh.

@@ -1,5 +1,6 @@
 /* The JSON documents of the public API other than the unwrap report. */
 #include "neuv/neuv.h"
+#include "api/api_json.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/json_writer.h"
@@ -9,7 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static char *finish(json_writer *w)
+char *api_json_finish(json_writer *w)
 {
     if (w->failed) {
         json_free(w);
@@ -36,7 +37,7 @@ char *neuv_metrics_json(const neuv_metrics *metrics, const neuv_mesh *mesh, cons
     uv_metrics_write_json(&mt, &w);
     json_end_object(&w);
     json_end_object(&w);
-    return finish(&w);
+    return api_json_finish(&w);
 }
 
 char *neuv_train_report_json(const neuv_train_report *r, const char *model_name)
@@ -63,7 +64,7 @@ char *neuv_train_report_json(const neuv_train_report *r, const char *model_name)
     json_key(&w, "total"); json_number(&w, r->seconds);
     json_end_object(&w);
     json_end_object(&w);
-    return finish(&w);
+    return api_json_finish(&w);
 }
 
 neuv_status neuv_save_text(const char *path, const char *text)

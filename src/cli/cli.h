@@ -28,15 +28,11 @@ const neuv_callbacks *cli_callbacks(void);
 /* Ends a progress line so the next output starts on a fresh line. */
 void cli_progress_done(void);
 
-/* Loads `in` and cleans it (neuv_mesh_clean). On failure prints the one-line
- * error, frees everything, leaves *out NULL and returns the exit code;
- * returns 0 on success. A mesh whose faces all were degenerate is an error. */
+/* Loads `in` and cleans it (neuv_mesh_clean_cb, warnings through the CLI's
+ * callbacks). On failure prints the one-line error, frees everything, leaves
+ * *out NULL and returns the exit code; returns 0 on success. A mesh whose
+ * faces all were degenerate is an error. */
 int cli_load_clean(const char *in, neuv_mesh **out, neuv_clean_report *report);
-
-struct json_writer;
-/* Prints the finished JSON document on stdout and frees the writer; returns
- * the exit code (1 when the writer ran out of memory). */
-int cli_print_json(struct json_writer *w);
 
 /* Argument helpers: return 1 when argv[*i] is `name` and consume its value
  * into *out (advancing *i); print an error and set *bad when the value is

@@ -10,10 +10,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "core/json_writer.h"
-#include "core/log.h"
-#include "core/timer.h"
-
 cli_options cli_opts;
 
 int cli_error(const char *what, const char *fmt, ...)
@@ -57,7 +53,7 @@ static struct {
 static int progress_cb(void *user, const char *stage, double fraction, const char *detail)
 {
     (void)user;
-    double now = now_seconds();
+    double now = cli_now_seconds();
     if (strncmp(bar.stage, stage, sizeof bar.stage - 1) != 0) {
         snprintf(bar.stage, sizeof bar.stage, "%s", stage);
         bar.stage_start = now;
@@ -95,10 +91,6 @@ static void log_cb(void *user, neuv_log_level level, const char *message)
 }
 
 static neuv_callbacks callbacks;
-/* The commands that still call the library's internals report through this
- * scope, open for the whole run on the main thread. */
-static log_scope internal_scope;
-static int internal_scope_open;
 
 void cli_install_callbacks(void)
 {
@@ -106,9 +98,6 @@ void cli_install_callbacks(void)
     callbacks.log = log_cb;
     callbacks.progress = show_bar ? progress_cb : NULL;
     callbacks.user = NULL;
-    if (internal_scope_open) log_scope_close(&internal_scope);
-    log_scope_open(&internal_scope, &callbacks);
-    internal_scope_open = 1;
 }
 
 const neuv_callbacks *cli_callbacks(void) { return &callbacks; }
@@ -203,22 +192,13 @@ int cli_check_output_folder(const char *out)
     return 0;
 }
 
-int cli_print_json(json_writer *w)
-{
-    int failed = w->failed;
-    if (!failed) printf("%s\n", json_text(w));
-    json_free(w);
-    if (failed) { cli_error(NULL, "out of memory writing the JSON report"); return 1; }
-    return 0;
-}
-
 int cli_load_clean(const char *in, neuv_mesh **out, neuv_clean_report *report)
 {
     *out = NULL;
     neuv_mesh *m = NULL;
     neuv_status st = neuv_mesh_load(in, cli_callbacks(), &m);
     if (st != NEUV_OK) return cli_fail(in, st);
-    if ((st = neuv_mesh_clean(m, report)) != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
+    if ((st = neuv_mesh_clean_cb(m, report, cli_callbacks())) != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
     *out = m;
     return 0;
 }

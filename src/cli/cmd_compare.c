@@ -7,9 +7,6 @@
 
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "compare/uv_compare.h"
-#include "core/json_writer.h"
-#include "metrics/uv_metrics.h"
 
 int cmd_compare(int argc, char **argv)
 {
@@ -27,63 +24,17 @@ int cmd_compare(int argc, char **argv)
     neuv_mesh *m[2] = {NULL, NULL};
     for (int k = 0; k < 2; k++) {
         neuv_status st = neuv_mesh_load(path[k], cli_callbacks(), &m[k]);
-        if (st) { mesh_free(m[0]); return cli_fail(path[k], st); }
-        if (m[k]->nf == 0) { mesh_free(m[0]); mesh_free(m[1]); return cli_error(path[k], "the mesh has no faces"); }
-        if (m[k]->nuv == 0) { mesh_free(m[0]); mesh_free(m[1]); return cli_error(path[k], "the mesh has no UVs to compare"); }
+        if (st) { neuv_mesh_free(m[0]); return cli_fail(path[k], st); }
+        const char *missing = neuv_mesh_face_count(m[k]) == 0 ? "the mesh has no faces"
+                            : !neuv_mesh_has_uv(m[k])       ? "the mesh has no UVs to compare" : NULL;
+        if (missing) { neuv_mesh_free(m[0]); neuv_mesh_free(m[1]); return cli_error(path[k], "%s", missing); }
     }
-    uv_compare_result r;
-    uv_metrics mb;
-    neuv_status st = uv_compare(m[0], m[1], &r);
-    if (st == NEUV_OK) st = uv_metrics_compute(m[1], &mb);
-    mesh_free(m[0]); mesh_free(m[1]);
+    neuv_uv_comparison r;
+    neuv_status st = neuv_compare_uvs(m[0], m[1], cli_callbacks(), &r);
+    neuv_mesh_free(m[0]);
+    neuv_mesh_free(m[1]);
     if (st) return cli_fail(path[1], st);
-    if (json) {
-        json_writer w;
-        json_init(&w);
-        json_begin_object(&w);
-        json_key(&w, "a"); json_string(&w, path[0]);
-        json_key(&w, "b"); json_string(&w, path[1]);
-        json_key(&w, "uv_distance");
-        json_begin_object(&w);
-        json_key(&w, "mean"); json_number(&w, r.uv_mean);
-        json_key(&w, "p95"); json_number(&w, r.uv_p95);
-        json_key(&w, "max"); json_number(&w, r.uv_max);
-        json_end_object(&w);
-        json_key(&w, "uv_distance_nearest");
-        json_begin_object(&w);
-        json_key(&w, "mean"); json_number(&w, r.nearest_mean);
-        json_key(&w, "p95"); json_number(&w, r.nearest_p95);
-        json_key(&w, "max"); json_number(&w, r.nearest_max);
-        json_end_object(&w);
-        json_key(&w, "across_seam"); json_number(&w, r.across_seam);
-        json_key(&w, "chart_agreement"); json_number(&w, r.chart_agreement);
-        json_key(&w, "chart_agreement_faces"); json_number(&w, r.chart_agreement_faces);
-        json_key(&w, "charts_a"); json_int(&w, r.charts_a);
-        json_key(&w, "charts_b"); json_int(&w, r.charts_b);
-        json_key(&w, "faces_a"); json_int(&w, r.faces_a);
-        json_key(&w, "faces_b"); json_int(&w, r.faces_b);
-        json_key(&w, "vertices_compared"); json_int(&w, r.vertices_compared);
-        json_key(&w, "max_surface_distance"); json_number(&w, r.max_surface_distance);
-        json_key(&w, "worst_charts");
-        json_begin_array(&w);
-        for (int i = 0; i < UV_COMPARE_WORST && r.worst_chart[i] >= 0; i++) {
-            json_begin_object(&w);
-            json_key(&w, "b_chart"); json_int(&w, r.worst_chart[i]);
-            json_key(&w, "a_chart"); json_int(&w, r.worst_match[i]);
-            json_key(&w, "corners"); json_int(&w, r.worst_corners[i]);
-            json_key(&w, "uv_mean"); json_number(&w, r.worst_mean[i]);
-            json_end_object(&w);
-        }
-        json_end_array(&w);
-        json_key(&w, "b_flipped"); json_int(&w, mb.flipped);
-        json_key(&w, "b_overlap_fraction"); json_number(&w, mb.overlap_fraction);
-        json_key(&w, "b_qce_mean"); json_number(&w, mb.qce_mean);
-        json_end_object(&w);
-        if (w.failed) { json_free(&w); return cli_error(NULL, "out of memory writing JSON"); }
-        printf("%s\n", json_text(&w));
-        json_free(&w);
-        return 0;
-    }
+    if (json) return cli_print_document(neuv_uv_comparison_json(&r, path[0], path[1]));
     printf("%s vs %s\n", path[0], path[1]);
     printf("  UV distance (atlas units) over %d corners of B, in the matched chart: mean %.6g  p95 %.6g  max %.6g"
            " (%.2f%% of corners past its seam, compared with its map extended)\n",
@@ -94,6 +45,7 @@ int cmd_compare(int argc, char **argv)
            100 * r.chart_agreement_faces);
     printf("  faces: A %d, B %d; charts: A %d, B %d; B's farthest vertex from A's surface %.3g\n", r.faces_a, r.faces_b,
            r.charts_a, r.charts_b, r.max_surface_distance);
-    printf("  B: %d flipped faces, overlap %.3g, qce_mean %.4f\n", mb.flipped, mb.overlap_fraction, mb.qce_mean);
+    printf("  B: %d flipped faces, overlap %.3g, qce_mean %.4f\n", r.b_metrics.flipped, r.b_metrics.overlap_fraction,
+           r.b_metrics.qce_mean);
     return 0;
 }

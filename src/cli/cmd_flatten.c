@@ -1,37 +1,11 @@
 /* neuv flatten IN --method lscm|harmonic -o OUT
  * Classic flattening of a mesh that is one topological disk; the UVs are
  * scaled into [0,1]² keeping their aspect ratio. */
-#include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "core/timer.h"
-#include "flatten/disk_topology.h"
-#include "flatten/harmonic.h"
-#include "flatten/lscm.h"
-#include "mesh/clean.h"
-#include "metrics/uv_metrics.h"
-
-/* Uniform scale and shift of uv (#V by 2) into [0,1]², keeping the aspect. */
-static void fit_unit_square(int nv, double *uv)
-{
-    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-    for (int v = 0; v < nv; v++)
-        for (int c = 0; c < 2; c++) {
-            lo[c] = fmin(lo[c], uv[2 * v + c]);
-            hi[c] = fmax(hi[c], uv[2 * v + c]);
-        }
-    double size = fmax(hi[0] - lo[0], hi[1] - lo[1]);
-    double s = size > 0 ? 1.0 / size : 1.0;
-    for (int v = 0; v < nv; v++)
-        for (int c = 0; c < 2; c++) {
-            double x = (uv[2 * v + c] - lo[c]) * s;
-            uv[2 * v + c] = x < 0 ? 0 : x > 1 ? 1 : x; /* clamp rounding only */
-        }
-}
 
 int cmd_flatten(int argc, char **argv)
 {
@@ -52,30 +26,18 @@ int cmd_flatten(int argc, char **argv)
         return cli_error(NULL, "--method expects lscm or harmonic, got '%s'", method);
     if (cli_check_output_not_input(out, in)) return 2;
 
-    double t0 = now_seconds();
+    double t0 = cli_now_seconds();
     neuv_mesh *m = NULL;
     neuv_clean_report rep;
     int rc = cli_load_clean(in, &m, &rep);
     if (rc) return rc;
-    neuv_status st;
-    if ((st = flatten_require_disk(m, NULL, NULL))) { mesh_free(m); return cli_fail(in, st); }
-    double *uv = malloc(sizeof(double) * 2 * (size_t)m->nv);
-    if (!uv) { mesh_free(m); return cli_error(in, "out of memory"); }
-    double t1 = now_seconds();
-    st = use_lscm ? lscm(m, uv) : harmonic(m, uv);
-    double t_flat = now_seconds() - t1;
-    if (st) { free(uv); mesh_free(m); return cli_fail(in, st); }
-    fit_unit_square(m->nv, uv);
-    st = mesh_set_uv(m, m->nv, uv, m->tri);
-    free(uv);
-    if (st) { mesh_free(m); return cli_fail(in, st); }
-    if ((st = neuv_mesh_save(m, out))) { mesh_free(m); return cli_fail(out, st); }
-    uv_metrics mt;
-    st = uv_metrics_compute(m, &mt);
-    if (st) { mesh_free(m); return cli_fail(out, st); }
-    printf("%s: %d vertices, %d faces, %s in %.3f s (total %.3f s) -> %s\n", in, m->nv, m->nf, method, t_flat,
-           now_seconds() - t0, out);
-    printf("  qce_mean %.6g  flipped %d\n", mt.qce_mean, mt.flipped);
-    mesh_free(m);
+    neuv_flatten_report fr;
+    neuv_status st = neuv_flatten(m, use_lscm ? NEUV_METHOD_LSCM : NEUV_METHOD_HARMONIC, cli_callbacks(), &fr);
+    if (st) { neuv_mesh_free(m); return cli_fail(in, st); }
+    if ((st = neuv_mesh_save(m, out))) { neuv_mesh_free(m); return cli_fail(out, st); }
+    printf("%s: %d vertices, %d faces, %s in %.3f s (total %.3f s) -> %s\n", in, neuv_mesh_vertex_count(m),
+           neuv_mesh_face_count(m), method, fr.seconds, cli_now_seconds() - t0, out);
+    printf("  qce_mean %.6g  flipped %d\n", fr.metrics.qce_mean, fr.metrics.flipped);
+    neuv_mesh_free(m);
     return 0;
 }

@@ -6,19 +6,11 @@
  * shares no vertex with the input off its feature and boundary polylines,
  * optionally jittered.
  * The input is cleaned first. */
-#include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "cli/cli.h"
 #include "cli/commands.h"
-#include "core/timer.h"
-#include "mesh/clean.h"
-#include "remesh/isotropic_remesh.h"
-#include "remesh/jitter.h"
-#include "remesh/simplify.h"
-#include "remesh/subdivide.h"
 
 #define REMESH_USAGE "usage: neuv remesh IN -o OUT (--simplify R | --subdivide N [--loop] | --isotropic L | --faces N) " \
                      "[--jitter] [--seed S]"
@@ -63,61 +55,71 @@ int cmd_remesh(int argc, char **argv)
     if (loop && !have_subdivide) return cli_error(NULL, "--loop needs --subdivide N");
     if (cli_check_output_not_input(out, in)) return 2;
 
-    double t0 = now_seconds();
+    double t0 = cli_now_seconds();
     neuv_mesh *m = NULL;
     neuv_clean_report rep;
     int rc = cli_load_clean(in, &m, &rep);
     if (rc) return rc;
     neuv_status st;
-    if (!cli_opts.quiet) printf("%s: %d vertices, %d faces%s\n", in, m->nv, m->nf, m->nuv > 0 ? ", with UVs" : "");
+    if (!cli_opts.quiet)
+        printf("%s: %d vertices, %d faces%s\n", in, neuv_mesh_vertex_count(m), neuv_mesh_face_count(m),
+               neuv_mesh_has_uv(m) ? ", with UVs" : "");
     if (have_simplify) {
         neuv_mesh *s;
-        if ((st = mesh_simplify(m, ratio, &s))) { mesh_free(m); return cli_fail(in, st); }
-        if (!cli_opts.quiet) printf("  simplify %g: %d -> %d faces (target %.0f)\n", ratio, m->nf, s->nf, ratio * m->nf);
-        mesh_free(m);
+        if ((st = neuv_mesh_simplify(m, ratio, cli_callbacks(), &s))) { neuv_mesh_free(m); return cli_fail(in, st); }
+        if (!cli_opts.quiet)
+            printf("  simplify %g: %d -> %d faces (target %.0f)\n", ratio, neuv_mesh_face_count(m),
+                   neuv_mesh_face_count(s), ratio * neuv_mesh_face_count(m));
+        neuv_mesh_free(m);
         m = s;
     }
     if (have_subdivide) {
         neuv_mesh *s;
-        if ((st = mesh_subdivide(m, rounds, loop ? SUBDIVIDE_LOOP : SUBDIVIDE_MIDPOINT, &s))) {
-            mesh_free(m);
+        if ((st = neuv_mesh_subdivide(m, rounds, loop ? NEUV_SUBDIVIDE_LOOP : NEUV_SUBDIVIDE_MIDPOINT, &s))) {
+            neuv_mesh_free(m);
             return cli_fail(in, st);
         }
-        if (!cli_opts.quiet) printf("  subdivide %d (%s): %d -> %d faces\n", rounds, loop ? "loop" : "midpoint", m->nf, s->nf);
-        mesh_free(m);
+        if (!cli_opts.quiet)
+            printf("  subdivide %d (%s): %d -> %d faces\n", rounds, loop ? "loop" : "midpoint", neuv_mesh_face_count(m),
+                   neuv_mesh_face_count(s));
+        neuv_mesh_free(m);
         m = s;
     }
     if (have_isotropic || have_faces) {
-        isotropic_options io;
-        isotropic_report ir;
-        isotropic_default_options(&io);
-        io.target_edge_length = have_isotropic ? edge_length : 0;
-        io.target_faces = have_faces ? target_faces : 0;
+        neuv_isotropic_options io;
+        neuv_isotropic_report ir;
+        neuv_isotropic_options_init(&io);
+        io.edge_length = have_isotropic ? edge_length : 0;
+        io.faces = have_faces ? target_faces : 0;
         neuv_mesh *s;
-        if ((st = mesh_remesh_isotropic(m, &io, &s, &ir))) { mesh_free(m); return cli_fail(in, st); }
-        double lo[3], hi[3];
-        mesh_bounding_box(m, lo, hi);
-        double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                           (hi[2] - lo[2]) * (hi[2] - lo[2]));
+        if ((st = neuv_mesh_remesh_isotropic(m, &io, cli_callbacks(), &s, &ir))) {
+            neuv_mesh_free(m);
+            return cli_fail(in, st);
+        }
         char target[64] = "";
         if (have_faces) snprintf(target, sizeof target, " (target %d, %d round%s)", target_faces, ir.rounds,
                                  ir.rounds == 1 ? "" : "s");
         if (!cli_opts.quiet) printf("  isotropic: %d -> %d faces%s, edge length %.4g, %d feature edges kept (%d in the input), "
                "max distance to the input %.2g of the bounding-box diagonal\n", ir.faces_in, ir.faces_out, target,
-               ir.edge_length, ir.feature_edges_out, ir.feature_edges_in, diag > 0 ? ir.max_distance / diag : 0.0);
-        mesh_free(m);
+               ir.edge_length, ir.feature_edges_out, ir.feature_edges_in,
+               ir.diagonal > 0 ? ir.max_distance / ir.diagonal : 0.0);
+        neuv_mesh_free(m);
         m = s;
     }
     if (jitter) {
-        jitter_report jr;
-        if ((st = mesh_jitter(m, (uint64_t)(uint32_t)seed, NULL, &jr))) { mesh_free(m); return cli_fail(in, st); }
+        neuv_jitter_report jr;
+        if ((st = neuv_mesh_jitter(m, (unsigned long long)(unsigned)seed, &jr))) {
+            neuv_mesh_free(m);
+            return cli_fail(in, st);
+        }
         if (!cli_opts.quiet) printf("  jitter (seed %d): %d vertices moved, %d slid along the boundary, %d kept, %d edges flipped, "
                "max deviation %.3g\n", seed, jr.moved_vertices, jr.slid_vertices, jr.fixed_vertices, jr.flipped_edges,
                jr.max_deviation);
     }
-    if ((st = neuv_mesh_save(m, out))) { mesh_free(m); return cli_fail(out, st); }
-    if (!cli_opts.quiet) printf("%s: %d vertices, %d faces%s (%.3f s)\n", out, m->nv, m->nf, m->nuv > 0 ? ", with UVs" : "",
-           now_seconds() - t0);
-    mesh_free(m);
+    if ((st = neuv_mesh_save(m, out))) { neuv_mesh_free(m); return cli_fail(out, st); }
+    if (!cli_opts.quiet)
+        printf("%s: %d vertices, %d faces%s (%.3f s)\n", out, neuv_mesh_vertex_count(m), neuv_mesh_face_count(m),
+               neuv_mesh_has_uv(m) ? ", with UVs" : "", cli_now_seconds() - t0);
+    neuv_mesh_free(m);
     return 0;
 }
