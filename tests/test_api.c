@@ -120,7 +120,7 @@ static void test_mesh_from_arrays(void)
     CHECK_INT(neuv_mesh_get_corner_uvs(m, cu), 1);
     CHECK(cu[2 * 4] == 1 && cu[2 * 4 + 1] == 1 && cu[2 * 5] == 0 && cu[2 * 5 + 1] == 1);
     neuv_metrics mt;
-    CHECK(neuv_evaluate(m, &mt) == NEUV_OK);
+    CHECK(neuv_evaluate(m, NULL, &mt) == NEUV_OK);
     CHECK_NEAR(mt.qce_mean, 1.0, 1e-12);
     CHECK_INT(mt.flipped, 0);
     CHECK_NEAR(mt.packing_efficiency, 1.0, 1e-12);
@@ -186,7 +186,7 @@ static void test_stages_and_generate(void)
     CHECK(ci.source == NEUV_SOURCE_LSCM && isnan(ci.network_qce) && ci.qce >= 1 && ci.faces > 0);
     CHECK(neuv_atlas_get_chart(one, rep.charts, &ci) == NEUV_ERR_INPUT);
     neuv_metrics again;
-    CHECK(neuv_evaluate(neuv_atlas_mesh(one), &again) == NEUV_OK);
+    CHECK(neuv_evaluate(neuv_atlas_mesh(one), NULL, &again) == NEUV_OK);
     CHECK(again.qce_mean == rep.metrics.qce_mean && again.packing_efficiency == rep.metrics.packing_efficiency);
     char *json = neuv_atlas_report_json(one, "cylinder", 0, 0);
     CHECK(json && strstr(json, "\"lscm\"") && strstr(json, "\"input\":\"cylinder\""));
@@ -456,14 +456,14 @@ static void test_pack_existing(void)
         free(tri);
     }
     neuv_metrics before, after;
-    CHECK(neuv_evaluate(copy, &before) == NEUV_OK);
+    CHECK(neuv_evaluate(copy, NULL, &before) == NEUV_OK);
     neuv_pack_options ko;
     neuv_pack_options_init(&ko);
     ko.resolution = 512;
     ko.padding = 4;
     neuv_pack_report pr;
-    CHECK(neuv_pack_uvs(copy, &ko, &pr) == NEUV_OK);
-    CHECK(neuv_evaluate(copy, &after) == NEUV_OK);
+    CHECK(neuv_pack_uvs(copy, &ko, NULL, &pr) == NEUV_OK);
+    CHECK(neuv_evaluate(copy, NULL, &after) == NEUV_OK);
     CHECK_INT(pr.charts, before.charts);
     CHECK_NEAR(after.qce_mean, before.qce_mean, 1e-9); /* packing only moves, turns and scales charts */
     CHECK_INT(after.flipped, 0);

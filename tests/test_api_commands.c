@@ -135,7 +135,7 @@ static void test_topology(void)
     CHECK_INT(t.component_count, 0);
     neuv_free(t.components);
     neuv_clean_report rep;
-    CHECK(neuv_mesh_clean_cb(m, &rep, NULL) == NEUV_ERR_INPUT); /* as neuv_mesh_clean */
+    CHECK(neuv_mesh_clean(m, NULL, &rep) == NEUV_ERR_INPUT); /* as neuv_mesh_clean */
     neuv_mesh_free(m);
 
     /* The warning about a non-orientable component reaches the callbacks. */
@@ -147,7 +147,7 @@ static void test_topology(void)
     CHECK_INT(t.repairs.nonorientable_components, 1);
     neuv_free(t.components);
     warnings = 0;
-    CHECK(neuv_mesh_clean_cb(m, &rep, &cb) == NEUV_OK);
+    CHECK(neuv_mesh_clean(m, &cb, &rep) == NEUV_OK);
     CHECK_INT(warnings, 1);
     CHECK_INT(rep.nonorientable_components, 1);
     neuv_mesh_free(m);

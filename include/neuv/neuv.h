@@ -176,9 +176,10 @@ typedef struct neuv_clean_report {
 /* The repairs every unwrap makes on its copy of the input, in place: weld,
  * drop degenerate and duplicate faces, split non-manifold edges and
  * vertices, drop unreferenced vertices, orient each component (closed ones
- * outward). UVs stay with their corners. report may be NULL. A mesh left
- * with no faces is NEUV_ERR_INPUT. */
-NEUV_API neuv_status neuv_mesh_clean(neuv_mesh *mesh, neuv_clean_report *report);
+ * outward). UVs stay with their corners. Messages (the warning about a
+ * non-orientable component left as it is) go to cb (may be NULL). report
+ * may be NULL. A mesh left with no faces is NEUV_ERR_INPUT. */
+NEUV_API neuv_status neuv_mesh_clean(neuv_mesh *mesh, const neuv_callbacks *cb, neuv_clean_report *report);
 /* Only the welding of vertices at exactly identical positions (what
  * neuv_evaluate does on its copy, so that seams are found across shared
  * edges); *welded (may be NULL) gets how many were merged. */
@@ -287,8 +288,8 @@ NEUV_API char *neuv_metrics_json(const neuv_metrics *metrics, const neuv_mesh *m
 
 /* The metrics of mesh's UVs, positions welded first (on a
  * copy) so that seams are found across exactly coinciding vertices.
- * NEUV_ERR_INPUT when the mesh has no UVs. */
-NEUV_API neuv_status neuv_evaluate(const neuv_mesh *mesh, neuv_metrics *out);
+ * NEUV_ERR_INPUT when the mesh has no UVs. Messages go to cb (may be NULL). */
+NEUV_API neuv_status neuv_evaluate(const neuv_mesh *mesh, const neuv_callbacks *cb, neuv_metrics *out);
 
 /* ---- the atlas ---------------------------------------------------------- */
 
@@ -469,8 +470,10 @@ typedef struct neuv_pack_report {
 
 /* Repacks the charts of mesh's UVs (UV-connected components) into one
  * square, in place; positions are welded first (exactly coinciding only).
- * NEUV_ERR_INPUT when the mesh has no UVs. report may be NULL. */
-NEUV_API neuv_status neuv_pack_uvs(neuv_mesh *mesh, const neuv_pack_options *o, neuv_pack_report *report);
+ * NEUV_ERR_INPUT when the mesh has no UVs. Messages go to cb (may be
+ * NULL). report may be NULL. */
+NEUV_API neuv_status neuv_pack_uvs(neuv_mesh *mesh, const neuv_pack_options *o, const neuv_callbacks *cb,
+                                   neuv_pack_report *report);
 
 /* ---- pictures ---------------------------------------------------------- */
 
@@ -484,8 +487,9 @@ typedef enum neuv_preview_color {
  * flipped faces red, overlaps highlighted) and PREFIX-checker.png (the
  * mesh with a checkerboard through its UVs from four views), 1024 px.
  * NEUV_ERR_INPUT when the mesh has no UVs; NEUV_ERR_IO when a file cannot
- * be written. */
-NEUV_API neuv_status neuv_write_preview(const neuv_mesh *mesh, const char *prefix, neuv_preview_color color);
+ * be written. Messages go to cb (may be NULL). */
+NEUV_API neuv_status neuv_write_preview(const neuv_mesh *mesh, const char *prefix, neuv_preview_color color,
+                                        const neuv_callbacks *cb);
 
 /* ---- files --------------------------------------------------------------- */
 
@@ -495,10 +499,6 @@ NEUV_API neuv_status neuv_save_text(const char *path, const char *text);
 
 /* ---- cleaning and topology (neuv info) ---------------------------------- */
 
-/* neuv_mesh_clean with its messages (the warning about a non-orientable
- * component left as it is) sent to cb (NULL: silent). Same repairs, report
- * and errors. */
-NEUV_API neuv_status neuv_mesh_clean_cb(neuv_mesh *mesh, neuv_clean_report *report, const neuv_callbacks *cb);
 
 /* One connected component: faces joined across shared edges. */
 typedef struct neuv_component {

@@ -331,7 +331,7 @@ def pack(V, F, uvs, *, return_report=False, **options):
     V, F, UV, per_corner, mesh = _uv_mesh(V, F, uvs)
     try:
         report = _capi.PackReport()
-        check(lib.neuv_pack_uvs(mesh, byref(o), byref(report)))
+        check(lib.neuv_pack_uvs(mesh, byref(o), None, byref(report)))
         corners = np.empty((F.shape[0], 3, 2), np.float64)
         lib.neuv_mesh_get_corner_uvs(mesh, corners.ctypes.data_as(ctypes.POINTER(ctypes.c_double)))
     finally:
@@ -359,7 +359,7 @@ def evaluate(V, F, uvs):
     V, F, UV, per_corner, mesh = _uv_mesh(V, F, uvs)
     try:
         m = _capi.Metrics()
-        check(lib.neuv_evaluate(mesh, byref(m)))
+        check(lib.neuv_evaluate(mesh, None, byref(m)))
     finally:
         lib.neuv_mesh_free(mesh)
     return _struct_dict(m)

@@ -5,6 +5,7 @@
 
 #include "neuv/neuv.h"
 #include "core/error.h"
+#include "core/log.h"
 #include "core/mem.h"
 #include "mesh/clean.h"
 #include "mesh/mesh.h"
@@ -124,11 +125,14 @@ int neuv_mesh_get_corner_uvs(const neuv_mesh *m, double *uvs)
 
 _Static_assert(sizeof(neuv_clean_report) == sizeof(mesh_clean_report), "public and internal clean reports differ");
 
-neuv_status neuv_mesh_clean(neuv_mesh *m, neuv_clean_report *report)
+neuv_status neuv_mesh_clean(neuv_mesh *m, const neuv_callbacks *cb, neuv_clean_report *report)
 {
     if (!m) return error_set(NEUV_ERR_INPUT, "neuv_mesh_clean: no mesh");
     mesh_clean_report r;
+    log_scope scope;
+    log_scope_open(&scope, cb);
     neuv_status s = mesh_clean(m, NULL, &r);
+    log_scope_close(&scope);
     if (s != NEUV_OK) return s;
     if (report) memcpy(report, &r, sizeof *report);
     if (m->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");

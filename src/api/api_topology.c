@@ -1,4 +1,4 @@
-/* Public cleaning with callbacks, and what a cleaned mesh is made of: its
+/* What a cleaned mesh is made of: its
  * components with their topology, and the repairs (`neuv info`). */
 #include <string.h>
 
@@ -9,15 +9,6 @@
 #include "core/mem.h"
 #include "mesh/clean.h"
 #include "mesh/topology.h"
-
-neuv_status neuv_mesh_clean_cb(neuv_mesh *m, neuv_clean_report *report, const neuv_callbacks *cb)
-{
-    log_scope scope;
-    log_scope_open(&scope, cb);
-    neuv_status s = neuv_mesh_clean(m, report);
-    log_scope_close(&scope);
-    return s;
-}
 
 /* Topology of every component of the cleaned mesh m, faces grouped by
  * component first (counting sort) so that each costs time linear in its

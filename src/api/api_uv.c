@@ -7,11 +7,12 @@
 #include "atlas/preview.h"
 #include "atlas/uv_charts.h"
 #include "core/error.h"
+#include "core/log.h"
 #include "core/mem.h"
 #include "mesh/clean.h"
 #include "metrics/uv_metrics.h"
 
-neuv_status neuv_evaluate(const neuv_mesh *mesh, neuv_metrics *out)
+neuv_status neuv_evaluate(const neuv_mesh *mesh, const neuv_callbacks *cb, neuv_metrics *out)
 {
     if (!mesh || !out) return error_set(NEUV_ERR_INPUT, "neuv_evaluate: no mesh or no output");
     if (mesh->nuv == 0 || !mesh->tri_uv) return error_set(NEUV_ERR_INPUT, "no UVs to evaluate");
@@ -19,13 +20,17 @@ neuv_status neuv_evaluate(const neuv_mesh *mesh, neuv_metrics *out)
     if (!m) return error_nomem("the mesh");
     neuv_status s = mesh_weld_positions(m) < 0 ? error_nomem("welding vertices") : NEUV_OK;
     uv_metrics mt;
+    log_scope scope;
+    log_scope_open(&scope, cb);
     if (s == NEUV_OK) s = uv_metrics_compute(m, &mt);
+    log_scope_close(&scope);
     mesh_free(m);
     if (s == NEUV_OK) memcpy(out, &mt, sizeof *out);
     return s;
 }
 
-neuv_status neuv_pack_uvs(neuv_mesh *m, const neuv_pack_options *o, neuv_pack_report *report)
+neuv_status neuv_pack_uvs(neuv_mesh *m, const neuv_pack_options *o, const neuv_callbacks *cb,
+                          neuv_pack_report *report)
 {
     if (!m) return error_set(NEUV_ERR_INPUT, "neuv_pack_uvs: no mesh");
     if (m->nuv == 0 || !m->tri_uv) return error_set(NEUV_ERR_INPUT, "no UVs: packing needs a mesh with texture coordinates");
@@ -48,7 +53,10 @@ neuv_status neuv_pack_uvs(neuv_mesh *m, const neuv_pack_options *o, neuv_pack_re
     int nc = chart ? uv_charts(m, chart) : -1;
     if (nc < 0) { mem_free(chart); return error_nomem("charts"); }
     atlas_pack_result res;
+    log_scope scope;
+    log_scope_open(&scope, cb);
     neuv_status s = atlas_pack(m, chart, nc, &po, NULL, &res);
+    log_scope_close(&scope);
     mem_free(chart);
     if (s == NEUV_OK && report) {
         report->charts = nc;
@@ -58,13 +66,18 @@ neuv_status neuv_pack_uvs(neuv_mesh *m, const neuv_pack_options *o, neuv_pack_re
     return s;
 }
 
-neuv_status neuv_write_preview(const neuv_mesh *mesh, const char *prefix, neuv_preview_color color)
+neuv_status neuv_write_preview(const neuv_mesh *mesh, const char *prefix, neuv_preview_color color,
+                               const neuv_callbacks *cb)
 {
     if (!mesh) return error_set(NEUV_ERR_INPUT, "neuv_write_preview: no mesh");
     if (!prefix || !*prefix) return error_set(NEUV_ERR_INPUT, "no picture prefix given");
     if (mesh->nuv == 0 || !mesh->tri_uv) return error_set(NEUV_ERR_INPUT, "no UVs to draw");
     if (color != NEUV_PREVIEW_CHART && color != NEUV_PREVIEW_QCE && color != NEUV_PREVIEW_AREA)
         return error_set(NEUV_ERR_INPUT, "unknown preview colouring %d", (int)color);
-    return preview_write(mesh, prefix, color == NEUV_PREVIEW_QCE ? PREVIEW_COLOR_QCE
-                                       : color == NEUV_PREVIEW_AREA ? PREVIEW_COLOR_AREA : PREVIEW_COLOR_CHART);
+    log_scope scope;
+    log_scope_open(&scope, cb);
+    neuv_status s = preview_write(mesh, prefix, color == NEUV_PREVIEW_QCE ? PREVIEW_COLOR_QCE
+                                                : color == NEUV_PREVIEW_AREA ? PREVIEW_COLOR_AREA : PREVIEW_COLOR_CHART);
+    log_scope_close(&scope);
+    return s;
 }

@@ -198,7 +198,7 @@ int cli_load_clean(const char *in, neuv_mesh **out, neuv_clean_report *report)
     neuv_mesh *m = NULL;
     neuv_status st = neuv_mesh_load(in, cli_callbacks(), &m);
     if (st != NEUV_OK) return cli_fail(in, st);
-    if ((st = neuv_mesh_clean_cb(m, report, cli_callbacks())) != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
+    if ((st = neuv_mesh_clean(m, cli_callbacks(), report)) != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
     *out = m;
     return 0;
 }

@@ -81,11 +81,11 @@ int cmd_eval(int argc, char **argv)
      * the map as the file has it. */
     neuv_metrics mt;
     st = neuv_mesh_weld(m, NULL);
-    if (st == NEUV_OK) st = neuv_evaluate(m, &mt);
+    if (st == NEUV_OK) st = neuv_evaluate(m, cli_callbacks(), &mt);
     if (st != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
     int rc = json ? print_json(in, m, &mt) : (print_table(in, m, &mt), 0);
     if (rc == 0 && preview) {
-        st = neuv_write_preview(m, preview, color);
+        st = neuv_write_preview(m, preview, color, cli_callbacks());
         if (st != NEUV_OK) rc = cli_fail(preview, st);
     }
     neuv_mesh_free(m);

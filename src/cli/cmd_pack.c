@@ -64,13 +64,13 @@ int cmd_pack(int argc, char **argv)
      * exactly as read. */
     neuv_metrics before, after;
     st = neuv_mesh_weld(m, NULL);
-    if (st == NEUV_OK) st = neuv_evaluate(m, &before);
+    if (st == NEUV_OK) st = neuv_evaluate(m, cli_callbacks(), &before);
     if (st != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
     double t1 = cli_now_seconds();
     neuv_pack_report res;
-    st = neuv_pack_uvs(m, &opt, &res);
+    st = neuv_pack_uvs(m, &opt, cli_callbacks(), &res);
     double t2 = cli_now_seconds();
-    if (st == NEUV_OK) st = neuv_evaluate(m, &after);
+    if (st == NEUV_OK) st = neuv_evaluate(m, cli_callbacks(), &after);
     if (st != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
     st = neuv_mesh_save(m, out);
     if (st != NEUV_OK) { neuv_mesh_free(m); return cli_fail(out, st); }
@@ -86,7 +86,7 @@ int cmd_pack(int argc, char **argv)
     }
     int rc = 0;
     if (preview) {
-        st = neuv_write_preview(m, preview, color);
+        st = neuv_write_preview(m, preview, color, cli_callbacks());
         if (st != NEUV_OK) rc = cli_fail(preview, st);
         else if (!cli_opts.quiet) printf("  wrote %s-uv.png and %s-checker.png\n", preview, preview);
     }

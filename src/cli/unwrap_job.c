@@ -99,7 +99,7 @@ static int write_outputs(const neuv_atlas *atlas, const unwrap_job *job)
     int rc = json ? 0 : cli_error(job->input_name, "out of memory writing the report");
     if (rc == 0 && job->report) rc = cli_write_text(job->report, json);
     if (rc == 0 && job->preview) {
-        s = neuv_write_preview(out, job->preview, (neuv_preview_color)job->preview_color);
+        s = neuv_write_preview(out, job->preview, (neuv_preview_color)job->preview_color, cli_callbacks());
         if (s != NEUV_OK) rc = cli_fail(job->preview, s);
     }
     if (rc == 0 && !cli_opts.quiet) {
