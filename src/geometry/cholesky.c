@@ -7,6 +7,7 @@
 #include <cholmod.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "geometry/cholesky.h"
 
 struct cholesky {
@@ -48,7 +49,7 @@ neuv_status cholesky_factor(const sparse_matrix *a, cholesky **out)
     *out = NULL;
     if (a->rows != a->cols || a->rows <= 0)
         return error_set(NEUV_ERR_INTERNAL, "cholesky: matrix is %d by %d, expected square and non-empty", a->rows, a->cols);
-    cholesky *c = calloc(1, sizeof *c);
+    cholesky *c = mem_calloc(1, sizeof *c);
     if (!c) return error_nomem("Cholesky factor");
     c->n = a->rows;
     cholmod_start(&c->common);
@@ -112,5 +113,5 @@ void cholesky_free(cholesky *c)
     cholmod_free_dense(&c->y, &c->common);
     cholmod_free_dense(&c->e, &c->common);
     cholmod_finish(&c->common);
-    free(c);
+    mem_free(c);
 }

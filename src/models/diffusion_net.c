@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "core/rng.h"
 
 neuv_status diffusion_net_create(diffusion_net *net, const diffusion_net_config *cfg, nn_params *params,
@@ -18,7 +19,7 @@ neuv_status diffusion_net_create(diffusion_net *net, const diffusion_net_config 
                          cfg ? cfg->in : 0, cfg ? cfg->width : 0, cfg ? cfg->out : 0, cfg ? cfg->blocks : 0);
     net->cfg = *cfg;
     int C = cfg->width;
-    net->block = calloc((size_t)cfg->blocks, sizeof *net->block);
+    net->block = mem_calloc((size_t)cfg->blocks, sizeof *net->block);
     if (!net->block) return error_nomem("DiffusionNet blocks");
     rng r;
     rng_seed(&r, cfg->seed);
@@ -60,17 +61,17 @@ fail:
 void diffusion_net_free(diffusion_net *net)
 {
     if (!net) return;
-    free(net->block);
+    mem_free(net->block);
     net->block = NULL;
 }
 
 void diffusion_net_geometry_free(diffusion_net_geometry *g)
 {
     if (!g) return;
-    free(g->evecs);
-    free(g->neg_evals);
-    free(g->mass);
-    free(g->face_vertex);
+    mem_free(g->evecs);
+    mem_free(g->neg_evals);
+    mem_free(g->mass);
+    mem_free(g->face_vertex);
     nn_sparse_free(&g->grad_x);
     nn_sparse_free(&g->grad_y);
     memset(g, 0, sizeof *g);
@@ -91,10 +92,10 @@ neuv_status diffusion_net_geometry_create(const neuv_mesh *m, const operators *o
     double area = 0;
     for (int v = 0; v < nv; v++) area += ops->mass[v];
     if (!(area > 0)) return error_set(NEUV_ERR_INPUT, "DiffusionNet: mesh has zero total area");
-    g->evecs = malloc(sizeof(float) * (size_t)nv * k);
-    g->neg_evals = malloc(sizeof(float) * (size_t)k);
-    g->mass = malloc(sizeof(float) * (size_t)nv);
-    g->face_vertex = malloc(sizeof(int) * 3 * (size_t)m->nf);
+    g->evecs = mem_alloc(sizeof(float) * (size_t)nv * k);
+    g->neg_evals = mem_alloc(sizeof(float) * (size_t)k);
+    g->mass = mem_alloc(sizeof(float) * (size_t)nv);
+    g->face_vertex = mem_alloc(sizeof(int) * 3 * (size_t)m->nf);
     if (!g->evecs || !g->neg_evals || !g->mass || !g->face_vertex) {
         diffusion_net_geometry_free(g);
         return error_nomem("DiffusionNet operators");
@@ -184,7 +185,7 @@ neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *op
     if (f == DIFFUSION_NET_HKS) {
         if (!ops || !ops->hks || ops->n_hks < 1 || ops->nv != nv)
             return error_set(NEUV_ERR_INPUT, "DiffusionNet: no heat kernel signatures in the operators");
-        float *x = malloc(sizeof(float) * (size_t)nv * ops->n_hks);
+        float *x = mem_alloc(sizeof(float) * (size_t)nv * ops->n_hks);
         if (!x) return error_nomem("HKS features");
         for (size_t i = 0; i < (size_t)nv * ops->n_hks; i++) x[i] = (float)ops->hks[i];
         *out = x;
@@ -207,7 +208,7 @@ neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *op
         if (q > r) r = q;
     }
     r = r > 0 ? 1.0 / sqrt(r) : 1.0;
-    float *x = malloc(sizeof(float) * (size_t)nv * 3);
+    float *x = mem_alloc(sizeof(float) * (size_t)nv * 3);
     if (!x) return error_nomem("xyz features");
     for (int v = 0; v < nv; v++)
         for (int d = 0; d < 3; d++) x[3 * v + d] = (float)((m->pos[3 * v + d] - c[d]) * r);

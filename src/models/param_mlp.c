@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "core/rng.h"
 
 neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, int depth, float slope,
@@ -35,7 +36,7 @@ neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, 
     for (long i = 0; psi > 0 && i < (long)psi * w0; i++)
         m->w_psi->data[i] = (float)((2 * rng_uniform(r) - 1) * bound);
     if (depth > 1) {
-        m->rest = calloc((size_t)(depth - 1), sizeof *m->rest);
+        m->rest = mem_calloc((size_t)(depth - 1), sizeof *m->rest);
         if (!m->rest) return error_nomem("MLP layers");
         for (int l = 1; l < depth; l++) {
             int last = l == depth - 1;
@@ -50,7 +51,7 @@ neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, 
 
 void param_mlp_free(param_mlp *m)
 {
-    free(m->rest);
+    mem_free(m->rest);
     m->rest = NULL;
 }
 

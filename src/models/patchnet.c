@@ -24,6 +24,7 @@
 #include "charts/charts.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/rng.h"
 #include "core/timer.h"
 #include "flatten/lscm.h"
@@ -93,7 +94,7 @@ neuv_status patchnet_model_create_for_mesh(patchnet_model *model, const patchnet
     float *x = NULL;
     int dim = 0;
     neuv_status st = diffusion_net_input_features(m, ops, o->features, &x, &dim);
-    free(x);
+    mem_free(x);
     return st ? st : patchnet_model_create(model, o, dim, k);
 }
 
@@ -107,8 +108,8 @@ void patchnet_model_free(patchnet_model *model)
 /* Per-face constants of the losses: areas #F by 1, unit normals #F by 3. */
 static neuv_status face_area_normal(const neuv_mesh *m, float **area, float **normal)
 {
-    *area = malloc(sizeof(float) * (size_t)m->nf);
-    *normal = malloc(sizeof(float) * 3 * (size_t)m->nf);
+    *area = mem_alloc(sizeof(float) * (size_t)m->nf);
+    *normal = mem_alloc(sizeof(float) * 3 * (size_t)m->nf);
     if (!*area || !*normal) return error_nomem("face areas");
     for (int f = 0; f < m->nf; f++) {
         double n[3];
@@ -125,7 +126,7 @@ static int cmp_int(const void *a, const void *b) { int x = *(const int *)a, y = 
 
 static neuv_status sample_sources(int nf, int s, uint64_t seed, int *out)
 {
-    int *perm = malloc(sizeof(int) * (size_t)nf);
+    int *perm = mem_alloc(sizeof(int) * (size_t)nf);
     if (!perm) return error_nomem("L_geo sources");
     for (int i = 0; i < nf; i++) perm[i] = i;
     rng r;
@@ -135,7 +136,7 @@ static neuv_status sample_sources(int nf, int s, uint64_t seed, int *out)
         int t = perm[i]; perm[i] = perm[j]; perm[j] = t;
     }
     memcpy(out, perm, sizeof(int) * (size_t)s);
-    free(perm);
+    mem_free(perm);
     qsort(out, (size_t)s, sizeof(int), cmp_int);
     return NEUV_OK;
 }
@@ -149,19 +150,19 @@ static neuv_status source_distances(const neuv_mesh *m, const int *src, int s, f
     neuv_status st = heat_geodesics_create(m, 1.0, &hg);
     if (st) return st;
     double diam = 0;
-    double *d = malloc(sizeof(double) * (size_t)m->nf * s);
+    double *d = mem_alloc(sizeof(double) * (size_t)m->nf * s);
     if (!d) { heat_geodesics_free(hg); return error_nomem("L_geo distances"); }
     st = heat_geodesics_diameter(hg, &diam);
     if (!st) st = heat_geodesics_face_distances(hg, m, src, s, d);
     heat_geodesics_free(hg);
-    if (st) { free(d); return st; }
+    if (st) { mem_free(d); return st; }
     if (!(diam > 0) || !isfinite(diam)) diam = 1;
     /* Column-major #F by #S is row-major #S by #F. */
     for (size_t i = 0; i < (size_t)m->nf * s; i++) {
         double v = d[i] / diam;
         dist[i] = (float)(isfinite(v) ? (v < 0 ? 0 : v) : 1.0);
     }
-    free(d);
+    mem_free(d);
     return NEUV_OK;
 }
 
@@ -186,7 +187,7 @@ typedef struct train_shape {
 static void train_shape_free(train_shape *t)
 {
     if (t->g_ready) diffusion_net_geometry_free(&t->g);
-    free(t->x); free(t->area); free(t->normal); free(t->dist); free(t->src);
+    mem_free(t->x); mem_free(t->area); mem_free(t->normal); mem_free(t->dist); mem_free(t->src);
     memset(t, 0, sizeof *t);
 }
 
@@ -207,8 +208,8 @@ static neuv_status train_shape_init(train_shape *t, const patchnet_model *model,
         return error_set(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim,
                          t->dim);
     if ((st = face_area_normal(m, &t->area, &t->normal))) return st;
-    t->src = malloc(sizeof(int) * (size_t)t->S);
-    t->dist = malloc(sizeof(float) * (size_t)t->S * nf);
+    t->src = mem_alloc(sizeof(int) * (size_t)t->S);
+    t->dist = mem_alloc(sizeof(float) * (size_t)t->S * nf);
     if (!t->src || !t->dist) return error_nomem("PatchNet training");
     if ((st = sample_sources(nf, t->S, seed, t->src))) return st;
     return source_distances(m, t->src, t->S, t->dist);
@@ -229,7 +230,7 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
     patchnet_options def;
     if (!o) { patchnet_default_options(&def); o = &def; }
     if (n_shapes < 1) return error_set(NEUV_ERR_INPUT, "PatchNet: no shapes to train on");
-    train_shape *sh = calloc((size_t)n_shapes, sizeof *sh);
+    train_shape *sh = mem_calloc((size_t)n_shapes, sizeof *sh);
     if (!sh) return error_nomem("PatchNet training");
     neuv_status st = NEUV_OK;
     nn_ctx *ctx = NULL;
@@ -245,7 +246,7 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
     }
     if (st) goto done;
     double t_geo = now_seconds() - t0;
-    hist = malloc(sizeof(double) * (size_t)iters);
+    hist = mem_alloc(sizeof(double) * (size_t)iters);
     if (!hist) { st = error_nomem("PatchNet training"); goto done; }
     nn_adam_config acfg = nn_adam_defaults();
     acfg.lr = o->lr > 0 ? o->lr : 1e-3f;
@@ -308,8 +309,8 @@ done:
     if (ctx) nn_ctx_free(ctx);
     if (adam_ready) nn_adam_free(&adam);
     for (int i = 0; i < n_shapes; i++) train_shape_free(&sh[i]);
-    free(sh);
-    free(hist);
+    mem_free(sh);
+    mem_free(hist);
     return st;
 }
 
@@ -344,7 +345,7 @@ neuv_status patchnet_infer_features(const patchnet_model *model, const neuv_mesh
         }
     if (vertex_features) {
         size_t n = (size_t)hidden->rows * hidden->cols;
-        float *vf = malloc(sizeof(float) * n);
+        float *vf = mem_alloc(sizeof(float) * n);
         if (!vf) { st = error_nomem("PatchNet vertex features"); goto done; }
         memcpy(vf, hidden->data, sizeof(float) * n);
         *vertex_features = vf;
@@ -353,7 +354,7 @@ neuv_status patchnet_infer_features(const patchnet_model *model, const neuv_mesh
 done:
     if (ctx) nn_ctx_free(ctx);
     diffusion_net_geometry_free(&g);
-    free(x);
+    mem_free(x);
     return st;
 }
 
@@ -369,7 +370,7 @@ neuv_status patchnet_infer(const patchnet_model *model, const neuv_mesh *m, cons
  * small for a snake or a comb, which the packer cannot nest. */
 static double uv_convexity(const neuv_mesh *sub, const double *uv)
 {
-    int *hull = malloc(sizeof(int) * (size_t)sub->nv);
+    int *hull = mem_alloc(sizeof(int) * (size_t)sub->nv);
     if (!hull) return -1;
     int h = convex_hull_2d(uv, sub->nv, hull);
     double hull_area = 0, area = 0;
@@ -381,7 +382,7 @@ static double uv_convexity(const neuv_mesh *sub, const double *uv)
         const double *a = uv + 2 * sub->tri[3 * f], *b = uv + 2 * sub->tri[3 * f + 1], *c = uv + 2 * sub->tri[3 * f + 2];
         area += (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
     }
-    free(hull);
+    mem_free(hull);
     if (h < 0) return -1;
     return hull_area > 0 ? fabs(area) / hull_area : 1.0;
 }
@@ -400,12 +401,12 @@ static neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, i
     int *vmap = NULL, *fmap = NULL;
     neuv_status st = chart_submesh(m, face_chart, id, &sub, &vmap, &fmap);
     if (st) return st;
-    free(vmap);
-    free(fmap);
-    double *uv = malloc(sizeof(double) * 2 * (size_t)sub->nv);
+    mem_free(vmap);
+    mem_free(fmap);
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)sub->nv);
     if (!uv) { mesh_free(sub); return error_nomem("chart UVs"); }
     st = lscm(sub, uv);
-    if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return st; }
+    if (st == NEUV_ERR_NOMEM) { mem_free(uv); mesh_free(sub); return st; }
     if (st == NEUV_OK) {
         /* A chart LSCM cannot flatten stays at qce INFINITY: the split loop
          * then cuts it smaller. */
@@ -425,9 +426,9 @@ static neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, i
             if (!st && cvx < 0) st = NEUV_ERR_NOMEM;
             if (!st && convexity) *convexity = cvx;
         }
-        if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return error_nomem("chart check"); }
+        if (st == NEUV_ERR_NOMEM) { mem_free(uv); mesh_free(sub); return error_nomem("chart check"); }
     }
-    free(uv);
+    mem_free(uv);
     mesh_free(sub);
     return NEUV_OK;
 }
@@ -444,13 +445,13 @@ static neuv_status grow_quality(double **q, int **flip, int **dirty, int *cap, i
     if (n <= *cap) return NEUV_OK;
     int c = *cap ? *cap : 16;
     while (c < n) c *= 2;
-    double *nq = realloc(*q, sizeof(double) * (size_t)c);
+    double *nq = mem_realloc(*q, sizeof(double) * (size_t)c);
     if (!nq) return error_nomem("chart qualities");
     *q = nq;
-    int *nfl = realloc(*flip, sizeof(int) * (size_t)c);
+    int *nfl = mem_realloc(*flip, sizeof(int) * (size_t)c);
     if (!nfl) return error_nomem("chart qualities");
     *flip = nfl;
-    int *nd = realloc(*dirty, sizeof(int) * (size_t)c);
+    int *nd = mem_realloc(*dirty, sizeof(int) * (size_t)c);
     if (!nd) return error_nomem("chart qualities");
     *dirty = nd;
     for (int i = *cap; i < c; i++) { nd[i] = 1; nq[i] = INFINITY; nfl[i] = 0; }
@@ -477,11 +478,11 @@ static neuv_status merge_charts(const neuv_mesh *m, double limit, double min_cvx
         chart_adjacency adj;
         if ((st = chart_adjacency_build(m, face_chart, &adj))) break;
         int nc = *n_charts;
-        free(gone); free(moved); free(order); free(len);
-        gone = calloc((size_t)nc, sizeof(int));
-        moved = malloc(sizeof(int) * (size_t)nf);
-        order = malloc(sizeof(int) * (size_t)(adj.n > 0 ? adj.n : 1));
-        len = malloc(sizeof(double) * (size_t)(adj.n > 0 ? adj.n : 1));
+        mem_free(gone); mem_free(moved); mem_free(order); mem_free(len);
+        gone = mem_calloc((size_t)nc, sizeof(int));
+        moved = mem_alloc(sizeof(int) * (size_t)nf);
+        order = mem_alloc(sizeof(int) * (size_t)(adj.n > 0 ? adj.n : 1));
+        len = mem_alloc(sizeof(double) * (size_t)(adj.n > 0 ? adj.n : 1));
         if (!gone || !moved || !order || !len) { chart_adjacency_free(&adj); st = error_nomem("chart merge"); break; }
         /* Insertion order by length, descending (ties: pair order), stable. */
         for (int i = 0; i < adj.n; i++) {
@@ -525,7 +526,7 @@ static neuv_status merge_charts(const neuv_mesh *m, double limit, double min_cvx
         for (int f = 0; f < nf; f++) face_chart[f] = gone[face_chart[f]];
         *n_charts = k;
     }
-    free(gone); free(moved); free(order); free(len);
+    mem_free(gone); mem_free(moved); mem_free(order); mem_free(len);
     return st;
 }
 
@@ -551,8 +552,8 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
             }
         if (st || !auto_k) break;
         /* Failing charts, worst first, each split once this round. */
-        free(count);
-        count = calloc((size_t)*n_charts, sizeof(int));
+        mem_free(count);
+        count = mem_calloc((size_t)*n_charts, sizeof(int));
         if (!count) { st = error_nomem("chart sizes"); break; }
         for (int f = 0; f < m->nf; f++) count[face_chart[f]]++;
         int any = 0;
@@ -595,7 +596,7 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
         }
         rep->chart_check_seconds = now_seconds() - t0;
     }
-    free(q); free(flip); free(dirty); free(count);
+    mem_free(q); mem_free(flip); mem_free(dirty); mem_free(count);
     return st;
 }
 
@@ -609,7 +610,7 @@ neuv_status patchnet_charts_from_model(const patchnet_model *model, const neuv_m
     if (feature_dim) *feature_dim = 0;
     patchnet_report local;
     if (!rep) { rep = &local; memset(rep, 0, sizeof *rep); }
-    int *label = malloc(sizeof(int) * (size_t)m->nf);
+    int *label = mem_alloc(sizeof(int) * (size_t)m->nf);
     if (!label) return error_nomem("patch labels");
     neuv_status st = patchnet_infer_features(model, m, ops, label, vertex_features, feature_dim);
     if (!st) {
@@ -622,8 +623,8 @@ neuv_status patchnet_charts_from_model(const patchnet_model *model, const neuv_m
         rep->label_charts = *n_charts;
         st = refine_charts(m, o, face_chart, n_charts, rep);
     }
-    free(label);
-    if (st && vertex_features) { free(*vertex_features); *vertex_features = NULL; }
+    mem_free(label);
+    if (st && vertex_features) { mem_free(*vertex_features); *vertex_features = NULL; }
     return st;
 }
 

@@ -12,6 +12,7 @@
 #include "charts/charts.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 #include "flatten/harmonic.h"
 #include "flatten/lscm.h"
@@ -44,7 +45,7 @@ void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt,
 {
     if (r->n_repairs == r->cap_repairs) {
         int cap = r->cap_repairs ? 2 * r->cap_repairs : 16;
-        unwrap_repair *nr = realloc(r->repairs, sizeof *nr * (size_t)cap);
+        unwrap_repair *nr = mem_realloc(r->repairs, sizeof *nr * (size_t)cap);
         if (!nr) return;
         r->repairs = nr;
         r->cap_repairs = cap;
@@ -61,9 +62,9 @@ void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt,
 void unwrap_piece_clear(chart_piece *p)
 {
     mesh_free(p->sub);
-    free(p->vmap);
-    free(p->fmap);
-    free(p->uv);
+    mem_free(p->vmap);
+    mem_free(p->fmap);
+    mem_free(p->uv);
     memset(p, 0, sizeof *p);
     p->net = -1;
     p->net_qce = NAN;
@@ -80,7 +81,7 @@ neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id
     p->net_depth = net_depth;
     neuv_status s = chart_submesh(m, face_chart, id, &p->sub, &p->vmap, &p->fmap);
     if (s != NEUV_OK) return s;
-    p->uv = calloc((size_t)p->sub->nv * 2, sizeof(double));
+    p->uv = mem_calloc((size_t)p->sub->nv * 2, sizeof(double));
     return p->uv ? NEUV_OK : error_nomem("chart UVs");
 }
 
@@ -117,7 +118,7 @@ static int grow_pieces(chart_piece **pieces, int *cap, int need)
     if (need <= *cap) return 0;
     int nc = *cap ? *cap : 16;
     while (nc < need) nc *= 2;
-    chart_piece *np = realloc(*pieces, sizeof *np * (size_t)nc);
+    chart_piece *np = mem_realloc(*pieces, sizeof *np * (size_t)nc);
     if (!np) return -1;
     memset(np + *cap, 0, sizeof *np * (size_t)(nc - *cap));
     for (int i = *cap; i < nc; i++) { np[i].net = -1; np[i].net_qce = NAN; np[i].lscm_qce = NAN; }
@@ -138,7 +139,7 @@ static int piece_accepts(void *user, int chart, const double *corner_uv)
 {
     (void)chart;
     const chart_piece *p = user;
-    double *uv = malloc(sizeof(double) * 2 * (size_t)p->sub->nv);
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)p->sub->nv);
     if (!uv) return -1;
     for (int f = 0; f < p->sub->nf; f++)
         for (int k = 0; k < 3; k++) {
@@ -148,7 +149,7 @@ static int piece_accepts(void *user, int chart, const double *corner_uv)
         }
     chart_uv_check chk;
     int ok = chart_uv_check_run(p->sub, uv, &chk);
-    free(uv);
+    mem_free(uv);
     return ok < 0 ? -1 : ok && !chk.mirrored;
 }
 
@@ -164,17 +165,17 @@ static int piece_accepts(void *user, int chart, const double *corner_uv)
 static neuv_status refine_conformal_step(chart_piece *p)
 {
     size_t bytes = sizeof(double) * 2 * (size_t)p->sub->nv;
-    double *solved = malloc(bytes);
+    double *solved = mem_alloc(bytes);
     if (!solved) return error_nomem("chart UVs");
     neuv_status s = lscm_anchored(p->sub, p->uv, REFINE_ANCHOR_LAMBDA, solved);
-    if (s == NEUV_ERR_NOMEM) { free(solved); return s; }
+    if (s == NEUV_ERR_NOMEM) { mem_free(solved); return s; }
     if (s == NEUV_OK) {
         chart_uv_check chk;
         int ok = chart_uv_check_run(p->sub, solved, &chk);
         if (ok < 0) s = error_nomem("chart check");
         else if (ok && !chk.mirrored) memcpy(p->uv, solved, bytes);
     }
-    free(solved);
+    mem_free(solved);
     return s == NEUV_ERR_NOMEM ? s : NEUV_OK; /* a failed solve keeps the networks' map */
 }
 
@@ -195,21 +196,21 @@ neuv_status unwrap_refine_piece(chart_piece *p, int steps, uv_refine_report *rep
 
 neuv_status unwrap_piece_lscm_qce(chart_piece *p)
 {
-    double *uv = malloc(sizeof(double) * 2 * (size_t)p->sub->nv);
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)p->sub->nv);
     if (!uv) return error_nomem("chart UVs");
     neuv_status s = lscm(p->sub, uv);
     if (s == NEUV_OK) p->lscm_qce = chart_qce_mean(p->sub, uv, NULL);
-    free(uv);
+    mem_free(uv);
     return s == NEUV_ERR_NOMEM ? s : NEUV_OK; /* a failed solve leaves NaN */
 }
 
 neuv_status unwrap_keep_provenance(struct neuv_unwrap_result *r, const chart_piece *pieces)
 {
     size_t n = (size_t)(r->n_charts > 0 ? r->n_charts : 1);
-    free(r->chart_source); free(r->chart_net_qce); free(r->chart_lscm_qce);
-    r->chart_source = malloc(sizeof(int) * n);
-    r->chart_net_qce = malloc(sizeof(double) * n);
-    r->chart_lscm_qce = malloc(sizeof(double) * n);
+    mem_free(r->chart_source); mem_free(r->chart_net_qce); mem_free(r->chart_lscm_qce);
+    r->chart_source = mem_alloc(sizeof(int) * n);
+    r->chart_net_qce = mem_alloc(sizeof(double) * n);
+    r->chart_lscm_qce = mem_alloc(sizeof(double) * n);
     if (!r->chart_source || !r->chart_net_qce || !r->chart_lscm_qce) return error_nomem("chart provenance");
     r->neural_charts = 0;
     for (int c = 0; c < r->n_charts; c++) {
@@ -318,9 +319,9 @@ neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_c
 {
     int nuv = 0;
     for (int c = 0; c < n_charts; c++) nuv += pieces[c].sub->nv;
-    double *uv = malloc(sizeof(double) * 2 * (size_t)nuv);
-    int *tri_uv = malloc(sizeof(int) * 3 * (size_t)m->nf);
-    if (!uv || !tri_uv) { free(uv); free(tri_uv); return error_nomem("UVs"); }
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)nuv);
+    int *tri_uv = mem_alloc(sizeof(int) * 3 * (size_t)m->nf);
+    if (!uv || !tri_uv) { mem_free(uv); mem_free(tri_uv); return error_nomem("UVs"); }
     int base = 0;
     neuv_status s = NEUV_OK;
     for (int c = 0; c < n_charts && s == NEUV_OK; c++) {
@@ -338,8 +339,8 @@ neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_c
         base += p->sub->nv;
     }
     if (s == NEUV_OK) s = mesh_set_uv(m, nuv, uv, tri_uv);
-    free(uv);
-    free(tri_uv);
+    mem_free(uv);
+    mem_free(tri_uv);
     return s;
 }
 
@@ -369,13 +370,13 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
     r->pack_split_trials = rep.trials;
     if (r->n_charts > before && r->chart_source) {
         /* A piece keeps its parent's map, so its source; the qce figures are the parent's. */
-        int *src = realloc(r->chart_source, sizeof(int) * (size_t)r->n_charts);
+        int *src = mem_realloc(r->chart_source, sizeof(int) * (size_t)r->n_charts);
         if (src) r->chart_source = src;
-        double *nq = realloc(r->chart_net_qce, sizeof(double) * (size_t)r->n_charts);
+        double *nq = mem_realloc(r->chart_net_qce, sizeof(double) * (size_t)r->n_charts);
         if (nq) r->chart_net_qce = nq;
-        double *lq = realloc(r->chart_lscm_qce, sizeof(double) * (size_t)r->n_charts);
+        double *lq = mem_realloc(r->chart_lscm_qce, sizeof(double) * (size_t)r->n_charts);
         if (lq) r->chart_lscm_qce = lq;
-        if (!src || !nq || !lq) { free(parent); return error_nomem("chart provenance"); }
+        if (!src || !nq || !lq) { mem_free(parent); return error_nomem("chart provenance"); }
         for (int c = before; c < r->n_charts; c++) {
             r->chart_source[c] = r->chart_source[parent[c]];
             r->chart_net_qce[c] = r->chart_net_qce[parent[c]];
@@ -383,17 +384,17 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
         }
     }
     if (r->n_charts > before && r->chart_net) {
-        int *net = realloc(r->chart_net, sizeof(int) * (size_t)r->n_charts);
+        int *net = mem_realloc(r->chart_net, sizeof(int) * (size_t)r->n_charts);
         if (net) r->chart_net = net;
-        int *mir = realloc(r->chart_mirrored, sizeof(int) * (size_t)r->n_charts);
+        int *mir = mem_realloc(r->chart_mirrored, sizeof(int) * (size_t)r->n_charts);
         if (mir) r->chart_mirrored = mir;
-        if (!net || !mir) { free(parent); return error_nomem("the model"); }
+        if (!net || !mir) { mem_free(parent); return error_nomem("the model"); }
         for (int c = before; c < r->n_charts; c++) {
             r->chart_net[c] = r->chart_net[parent[c]];
             r->chart_mirrored[c] = r->chart_mirrored[parent[c]];
         }
     }
-    free(parent);
+    mem_free(parent);
     return NEUV_OK;
 }
 
@@ -428,7 +429,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     if (s != NEUV_OK) return s;
 
     t = now_seconds();
-    r->face_chart = malloc(sizeof(int) * (size_t)m->nf);
+    r->face_chart = mem_alloc(sizeof(int) * (size_t)m->nf);
     if (!r->face_chart) { operators_free(&ops); return error_nomem("charts"); }
     patchnet_options po;
     patchnet_default_options(&po);
@@ -448,8 +449,8 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
                                        &feature_dim, &prep);
         prep.k = category->patchnet->k;
     } else if (keep_model) {
-        r->patchnet = calloc(1, sizeof *r->patchnet);
-        r->face_label = malloc(sizeof(int) * (size_t)m->nf);
+        r->patchnet = mem_calloc(1, sizeof *r->patchnet);
+        r->face_label = mem_alloc(sizeof(int) * (size_t)m->nf);
         if (!r->patchnet || !r->face_label) { operators_free(&ops); return error_nomem("the model"); }
     }
     if (!category) {
@@ -464,13 +465,13 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     r->patches = prep.k;
     r->patch_iterations = prep.iterations;
     r->patch_iters_per_second = prep.iters_per_second;
-    if (s != NEUV_OK) { free(features); return s; }
+    if (s != NEUV_OK) { mem_free(features); return s; }
 
     double *corner_uv = NULL;
     t = now_seconds();
     if (o->method == NEUV_METHOD_NEURAL) {
-        corner_uv = malloc(sizeof(double) * 6 * (size_t)m->nf);
-        if (!corner_uv) { free(features); return error_nomem("UVs"); }
+        corner_uv = mem_alloc(sizeof(double) * 6 * (size_t)m->nf);
+        if (!corner_uv) { mem_free(features); return error_nomem("UVs"); }
         param_net_options pp;
         param_net_default_options(&pp, o->preset == NEUV_PRESET_PAPER ? PARAM_PRESET_PAPER : PARAM_PRESET_FAST);
         pp.seed = o->seed;
@@ -493,20 +494,20 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
         r->param_loss = pr.loss;
         r->param = pr.model;
     }
-    free(features);
+    mem_free(features);
     r->seconds[STAGE_PARAM] = now_seconds() - t;
-    if (s != NEUV_OK) { free(corner_uv); return s; }
+    if (s != NEUV_OK) { mem_free(corner_uv); return s; }
 
     t = now_seconds();
     chart_piece *pieces = NULL;
     int cap = 0;
     s = flatten_and_repair(r, m, corner_uv, &pieces, &cap);
-    free(corner_uv);
+    mem_free(corner_uv);
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     if (s == NEUV_OK && keep_model) {
-        r->chart_net = malloc(sizeof(int) * (size_t)r->n_charts);
-        r->chart_mirrored = malloc(sizeof(int) * (size_t)r->n_charts);
+        r->chart_net = mem_alloc(sizeof(int) * (size_t)r->n_charts);
+        r->chart_mirrored = mem_alloc(sizeof(int) * (size_t)r->n_charts);
         if (!r->chart_net || !r->chart_mirrored) s = error_nomem("the model");
         for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) {
             r->chart_net[c] = pieces[c].net;
@@ -514,7 +515,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
         }
     }
     for (int c = 0; c < cap; c++) unwrap_piece_clear(&pieces[c]);
-    free(pieces);
+    mem_free(pieces);
     /* The refinement ran chart by chart in the repair loop; it belongs to the parameterization. */
     r->seconds[STAGE_REPAIR] = now_seconds() - t - r->refine_seconds;
     r->seconds[STAGE_PARAM] += r->refine_seconds;
@@ -523,7 +524,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     t = now_seconds();
     log_progress("pack", 0, "%d charts", r->n_charts);
     if ((s = split_for_packing(r, m)) != NEUV_OK) return s;
-    r->transforms = calloc((size_t)r->n_charts, sizeof *r->transforms);
+    r->transforms = mem_calloc((size_t)r->n_charts, sizeof *r->transforms);
     if (!r->transforms) return error_nomem("chart transforms");
     atlas_pack_options pk;
     atlas_pack_options_default(&pk);
@@ -546,14 +547,14 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
 {
     *out = NULL;
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
-    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
+    struct neuv_unwrap_result *r = mem_calloc(1, sizeof *r);
     if (!r) return error_nomem("the result");
     if (opts) r->opts = *opts;
     else neuv_unwrap_options_default(&r->opts);
     if (r->opts.resolution < 64 || r->opts.resolution > 16384)
-        { free(r); return error_set(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
+        { mem_free(r); return error_set(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
     if (r->opts.padding < 0 || r->opts.padding > r->opts.resolution / 8)
-        { free(r); return error_set(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
+        { mem_free(r); return error_set(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
     if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;
     neuv_status s = run_pipeline(r, mesh, keep_model, NULL, 0);
@@ -569,7 +570,7 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
     if (!category || !category->category || !category->patchnet || !category->param)
         return error_set(NEUV_ERR_INPUT, "not a category model");
-    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
+    struct neuv_unwrap_result *r = mem_calloc(1, sizeof *r);
     if (!r) return error_nomem("the result");
     neuv_unwrap_options_default(&r->opts);
     r->opts.method = NEUV_METHOD_NEURAL;
@@ -610,17 +611,17 @@ void neuv_unwrap_result_free(neuv_unwrap_result *r)
 {
     if (!r) return;
     mesh_free(r->mesh);
-    free(r->face_chart);
-    free(r->transforms);
-    free(r->repairs);
-    free(r->chart_net);
-    free(r->chart_mirrored);
-    free(r->chart_source);
-    free(r->chart_net_qce);
-    free(r->chart_lscm_qce);
-    free(r->face_label);
+    mem_free(r->face_chart);
+    mem_free(r->transforms);
+    mem_free(r->repairs);
+    mem_free(r->chart_net);
+    mem_free(r->chart_mirrored);
+    mem_free(r->chart_source);
+    mem_free(r->chart_net_qce);
+    mem_free(r->chart_lscm_qce);
+    mem_free(r->face_label);
     if (r->patchnet) patchnet_model_free(r->patchnet);
-    free(r->patchnet);
+    mem_free(r->patchnet);
     param_net_model_free(r->param);
-    free(r);
+    mem_free(r);
 }

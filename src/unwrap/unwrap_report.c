@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/json_writer.h"
+#include "core/mem.h"
 #include "metrics/uv_metrics.h"
 #include "unwrap/unwrap_internal.h"
 
@@ -39,7 +40,7 @@ typedef struct chart_figures { int faces; double area, qce_num, qce_den; } chart
 static chart_figures *chart_figures_compute(const struct neuv_unwrap_result *r)
 {
     const neuv_mesh *m = r->mesh;
-    chart_figures *cf = calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *cf);
+    chart_figures *cf = mem_calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *cf);
     if (!cf || !m->tri_uv || !r->face_chart) return cf;
     for (int f = 0; f < m->nf; f++) {
         int c = r->face_chart[f];
@@ -72,7 +73,7 @@ static void json_number_or_null(json_writer *w, double v)
 static void write_provenance(json_writer *w, const struct neuv_unwrap_result *r)
 {
     chart_figures *cf = chart_figures_compute(r);
-    if (!cf || !r->chart_source) { free(cf); return; }
+    if (!cf || !r->chart_source) { mem_free(cf); return; }
     int count[CHART_SOURCE_COUNT] = {0};
     double area[CHART_SOURCE_COUNT] = {0}, total = 0, nq = 0, lq = 0, qa = 0, la = 0;
     for (int c = 0; c < r->n_charts; c++) {
@@ -120,7 +121,7 @@ static void write_provenance(json_writer *w, const struct neuv_unwrap_result *r)
         json_end_object(w);
     }
     json_end_array(w);
-    free(cf);
+    mem_free(cf);
 }
 
 void unwrap_source_summary(const struct neuv_unwrap_result *r, char *buf, size_t n)
@@ -269,5 +270,5 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
 
     if (w.failed) { json_free(&w); return NULL; }
     char *text = w.buf; /* hand the buffer over */
-    return text ? text : strdup("{}");
+    return text ? text : mem_strdup("{}");
 }
