@@ -139,7 +139,7 @@ int cmd_operators(int argc, char **argv)
     int rc = 0;
     if (json) rc = print_json(&r, &o);
     else print_table(&r, &o);
-    free(cache_path);
+    neuv_free(cache_path);
     operators_free(&o);
     return rc;
 }

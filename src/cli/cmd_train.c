@@ -117,7 +117,7 @@ int cmd_train(int argc, char **argv)
         printf("trained on %d shapes (%d faces, %d charts): PatchNet K %d, %d steps; networks %d steps, "
                "%.1f s -> %s\n", rep.shapes, rep.faces, rep.charts, rep.patch_k, rep.patch_iterations,
                rep.param_iterations, rep.seconds, out);
-    free(json);
+    neuv_free(json);
     unwrap_model_free(md);
     for (int i = 0; i < n; i++) neuv_mesh_free(meshes[i]);
     free(meshes);

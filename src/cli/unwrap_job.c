@@ -93,7 +93,7 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
             printf("  trained on a simplified copy (%d of %d faces), model applied to the full mesh\n",
                    r->model.train_faces, r->mesh->nf);
     }
-    free(json);
+    neuv_free(json);
     neuv_unwrap_result_free(r);
     return rc;
 }

@@ -1,6 +1,10 @@
 /* Every allocation neuv makes goes through these, so that an application's
- * allocator (and a test's failing one) sees all of them. Same contracts as
- * malloc, calloc, realloc, free and strdup. */
+ * allocator (neuv_set_allocator) and a test's failing one see all of them.
+ * Same contracts as malloc, calloc, realloc, free and strdup, except that a
+ * size of 0 allocates 1 byte (never NULL on success). Memory that another
+ * library or the C library hands out (getline, CHOLMOD's cholmod_free'd
+ * objects, Assimp's scenes) is released with that library's own function,
+ * never mem_free. */
 #ifndef NEUV_CORE_MEM_H
 #define NEUV_CORE_MEM_H
 

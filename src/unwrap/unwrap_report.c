@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/error.h"
 #include "core/json_writer.h"
 #include "core/mem.h"
 #include "metrics/uv_metrics.h"
@@ -268,7 +269,8 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_end_array(&w);
     json_end_object(&w);
 
-    if (w.failed) { json_free(&w); return NULL; }
+    if (w.failed) { json_free(&w); error_nomem("the report"); return NULL; }
     char *text = w.buf; /* hand the buffer over */
-    return text ? text : mem_strdup("{}");
+    if (!text && !(text = mem_strdup("{}"))) error_nomem("the report");
+    return text;
 }
