@@ -10,6 +10,10 @@ neuv_status error_set(neuv_status code, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 /* Shorthand for an allocation failure of `what`. */
 neuv_status error_nomem(const char *what);
+/* The status of the last error_set on this thread (NEUV_ERR_INTERNAL when
+ * none), for a caller of a function that reports failure by returning NULL
+ * or -1 after error_set: `if (!p) return error_last();`. */
+neuv_status error_last(void);
 void error_clear(void);
 
 #endif

@@ -30,16 +30,16 @@ neuv_status diffusion_net_create(diffusion_net *net, const diffusion_net_config 
     for (int b = 0; b < cfg->blocks; b++) {
         diffusion_net_block *B = &net->block[b];
         snprintf(name, sizeof name, "%s.block%d.time", prefix, b);
-        if (!(B->time = nn_params_add(params, 1, C, name))) { st = NEUV_ERR_INPUT; goto fail; }
+        if (!(B->time = nn_params_add(params, 1, C, name))) { st = error_last(); goto fail; }
         for (int c = 0; c < C; c++)
             B->time->data[c] = (float)(1e-4 * pow(1e3, C > 1 ? (double)c / (C - 1) : 0.5));
         /* Rotations start near the identity (real part I plus noise), so the
          * first features are the gradient magnitudes |∇h|², the rotation-free
          * invariant, and learning moves away from it. */
         snprintf(name, sizeof name, "%s.block%d.rot_re", prefix, b);
-        if (!(B->rot_re = nn_params_add(params, C, C, name))) { st = NEUV_ERR_INPUT; goto fail; }
+        if (!(B->rot_re = nn_params_add(params, C, C, name))) { st = error_last(); goto fail; }
         snprintf(name, sizeof name, "%s.block%d.rot_im", prefix, b);
-        if (!(B->rot_im = nn_params_add(params, C, C, name))) { st = NEUV_ERR_INPUT; goto fail; }
+        if (!(B->rot_im = nn_params_add(params, C, C, name))) { st = error_last(); goto fail; }
         double bound = 1.0 / sqrt((double)C);
         for (int i = 0; i < C * C; i++) {
             B->rot_re->data[i] = (float)((2 * rng_uniform(&r) - 1) * bound);

@@ -28,7 +28,7 @@ neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, 
     }
     snprintf(name, sizeof name, "%s.0.b", prefix);
     m->b0 = nn_params_add(params, 1, w0, name);
-    if (!m->w_x || !m->b0 || (psi > 0 && !m->w_psi)) return NEUV_ERR_NOMEM;
+    if (!m->w_x || !m->b0 || (psi > 0 && !m->w_psi)) return error_last();
     /* One bound for both blocks: they are one layer of fan-in in + psi. */
     int fan_in = in + psi;
     double bound = depth > 1 ? sqrt(6.0 / fan_in) : sqrt(6.0 / (fan_in + out));

@@ -18,10 +18,10 @@ neuv_status nn_linear_create(nn_linear *l, int in, int out, nn_activation act,
     char name[256];
     snprintf(name, sizeof name, "%s.w", prefix);
     l->w = nn_params_add(params, in, out, name);
-    if (!l->w) return NEUV_ERR_INPUT;
+    if (!l->w) return error_last();
     snprintf(name, sizeof name, "%s.b", prefix);
     l->b = nn_params_add(params, 1, out, name);
-    if (!l->b) return NEUV_ERR_INPUT;
+    if (!l->b) return error_last();
     l->in = in;
     l->out = out;
     /* Kaiming-uniform keeps activations' variance through ReLU-family layers
