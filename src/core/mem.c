@@ -14,20 +14,27 @@
 #include "neuv/neuv.h"
 
 static neuv_allocator hook; /* hook.alloc == NULL: the C library's */
+static _Thread_local unsigned long failures;
+
+static void *counted(void *p)
+{
+    if (!p) failures++;
+    return p;
+}
 
 void *mem_alloc(size_t size)
 {
     if (!size) size = 1;
-    return hook.alloc ? hook.alloc(hook.user, size) : malloc(size);
+    return counted(hook.alloc ? hook.alloc(hook.user, size) : malloc(size));
 }
 
 void *mem_calloc(size_t count, size_t size)
 {
     if (!count) count = 1;
     if (!size) size = 1;
-    if (!hook.alloc) return calloc(count, size);
-    if (size > SIZE_MAX / count) return NULL;
-    void *p = hook.alloc(hook.user, count * size);
+    if (!hook.alloc) return counted(calloc(count, size));
+    if (size > SIZE_MAX / count) return counted(NULL);
+    void *p = counted(hook.alloc(hook.user, count * size));
     if (p) memset(p, 0, count * size);
     return p;
 }
@@ -36,8 +43,10 @@ void *mem_realloc(void *ptr, size_t size)
 {
     if (!ptr) return mem_alloc(size);
     if (!size) size = 1;
-    return hook.alloc ? hook.realloc(hook.user, ptr, size) : realloc(ptr, size);
+    return counted(hook.alloc ? hook.realloc(hook.user, ptr, size) : realloc(ptr, size));
 }
+
+unsigned long mem_failures(void) { return failures; }
 
 void mem_free(void *ptr)
 {

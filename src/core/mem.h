@@ -15,5 +15,11 @@ void *mem_calloc(size_t count, size_t size);
 void *mem_realloc(void *ptr, size_t size);
 void mem_free(void *ptr);
 char *mem_strdup(const char *s);
+/* How many allocations have failed on this thread so far. A library that
+ * works around a failed allocation by itself (CHOLMOD's analysis tries
+ * another ordering) is caught by comparing it before and after the call:
+ * neuv reports every failure as NEUV_ERR_NOMEM rather than give a result
+ * that differs from the one with enough memory. */
+unsigned long mem_failures(void);
 
 #endif
