@@ -41,11 +41,16 @@ neuv_status chart_submesh(const neuv_mesh *m, const int *face_chart, int id,
     for (int j = 0; j < nf; j++)
         for (int k = 0; k < 3; k++) s->tri[3 * j + k] = local[m->tri[3 * fm[j] + k]];
     mem_free(local);
-    /* Shrink the vertex map to its size; keeping the larger block is fine
-     * when realloc cannot shrink it. */
+    /* Shrink the vertex map to its size. The larger block would do, but a
+     * failed allocation is reported, never worked around (the caller's
+     * allocator is out of memory). */
     int *vm_small = mem_realloc(vm, sizeof(int) * (size_t)nv);
+    if (!vm_small) {
+        mesh_free(s); mem_free(fm); mem_free(vm);
+        return error_nomem("chart submesh");
+    }
     *sub = s;
-    *vmap = vm_small ? vm_small : vm;
+    *vmap = vm_small;
     *fmap = fm;
     return NEUV_OK;
 }

@@ -129,9 +129,13 @@ neuv_status charts_from_labels(const neuv_mesh *m, const int *face_label,
         if (!before) return error_nomem("chart smoothing");
         memcpy(before, face_chart, sizeof(int) * (size_t)m->nf);
         st = charts_smooth_boundaries(m, NULL, face_chart, o.smooth_sweeps, &rep.smoothed);
-        if (st == NEUV_OK && rep.smoothed > 0 && verify_charts(m, face_chart, n) != NEUV_OK) {
-            memcpy(face_chart, before, sizeof(int) * (size_t)m->nf);
-            rep.smoothed = 0;
+        if (st == NEUV_OK && rep.smoothed > 0) {
+            neuv_status v = verify_charts(m, face_chart, n);
+            if (v == NEUV_ERR_NOMEM) st = v;
+            else if (v != NEUV_OK) {
+                memcpy(face_chart, before, sizeof(int) * (size_t)m->nf);
+                rep.smoothed = 0;
+            }
         }
         mem_free(before);
         if (st != NEUV_OK) return st;
