@@ -78,6 +78,7 @@ int footprint_dilate(const footprint *in, int r, footprint *out)
 {
     int w = in->w + 2 * r, h = in->h + 2 * r;
     footprint tmp;
+    memset(out, 0, sizeof *out); /* empty on failure, so footprint_free is safe */
     if (footprint_alloc(&tmp, w, in->h) != 0) return -1;
     if (footprint_alloc(out, w, h) != 0) { footprint_free(&tmp); return -1; }
     /* Separable: a square structuring element is a row max then a column max. */
