@@ -46,7 +46,7 @@ void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt,
     if (r->n_repairs == r->cap_repairs) {
         int cap = r->cap_repairs ? 2 * r->cap_repairs : 16;
         unwrap_repair *nr = mem_realloc(r->repairs, sizeof *nr * (size_t)cap);
-        if (!nr) return;
+        if (!nr) { r->repairs_lost = 1; return; }
         r->repairs = nr;
         r->cap_repairs = cap;
     }
@@ -558,6 +558,7 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
     if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;
     neuv_status s = run_pipeline(r, mesh, keep_model, NULL, 0);
+    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     *out = r;
     return NEUV_OK;
@@ -592,6 +593,7 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
     r->model.finetune = finetune;
     r->model.shared_layer = shared_layer;
     neuv_status s = run_pipeline(r, mesh, 0, category, finetune);
+    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     r->model.network_charts = r->neural_charts;
     r->model.inference_seconds = r->total_seconds - r->seconds[STAGE_METRICS];

@@ -1229,6 +1229,7 @@ neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *md, const un
     r->model.label_agreement = -1;
     if (o->threads > 0) nn_set_threads(o->threads);
     neuv_status s = apply_pipeline(r, mesh, md, o);
+    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     *out = r;
     return NEUV_OK;
@@ -1283,6 +1284,11 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
         for (int i = 0; i < tr->n_repairs; i++)
             unwrap_add_repair(r, -1, "while training on the copy: chart %d: %.120s", tr->repairs[i].chart,
                               tr->repairs[i].what);
+        if (r->repairs_lost) {
+            s = error_nomem("a repair note");
+            neuv_unwrap_result_free(r);
+            *out = NULL;
+        }
     }
     neuv_unwrap_result_free(tr);
     if (s == NEUV_OK && model_out) *model_out = md;
