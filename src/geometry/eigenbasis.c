@@ -348,6 +348,7 @@ neuv_status eigenbasis(const sparse_matrix *L, const double *mass, int k,
         for (int p = L->row_start[r]; p < L->row_start[r + 1]; p++) uf_union(&uf, r, L->col[p]);
     info->components = uf_labels(&uf, label);
     uf_free(&uf);
+    if (info->components < 0) { mem_free(label); return error_nomem("eigen components"); }
 
     double *z = mem_alloc((size_t)n * k * sizeof *z);
     double *ev = mem_alloc((size_t)k * sizeof *ev);

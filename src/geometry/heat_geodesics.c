@@ -212,6 +212,7 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
         uf_union(&uf, m->tri[3 * f], m->tri[3 * f + 2]);
     }
     g->ncomponents = uf_labels(&uf, g->component);
+    if (g->ncomponents < 0) { g->ncomponents = 0; s = error_nomem("vertex components"); goto done; }
     g->w_reached = mem_calloc((size_t)g->ncomponents, 1);
     if (!g->w_reached) { s = error_nomem("heat geodesics"); goto done; }
 

@@ -134,6 +134,7 @@ static int merge_fragments(const neuv_mesh *m, const face_graph *g, int *face_ch
                 if (h >= 0 && face_chart[h] == face_chart[f]) uf_union(&u, f, h);
             }
         int nc = uf_labels(&u, comp);
+        if (nc < 0) { merged = -1; break; }
         for (int c = 0; c < nc; c++) carea[c] = 0;
         for (int f = 0; f < nf; f++) carea[comp[f]] += g->area[f];
         for (int l = 0; l < n_labels; l++) best[l] = -1;
