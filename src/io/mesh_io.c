@@ -131,7 +131,8 @@ neuv_status neuv_mesh_save(const neuv_mesh *mesh, const char *path)
     /* A large buffer: the writers emit many small records. Freed only after
      * the FILE that uses it is closed (commit or abort). */
     char *iobuf = mem_alloc(1 << 20);
-    if (iobuf) setvbuf(af.fp, iobuf, _IOFBF, 1 << 20);
+    if (!iobuf) { atomic_file_abort(&af); return error_nomem("the output buffer"); }
+    setvbuf(af.fp, iobuf, _IOFBF, 1 << 20);
     switch (kind) {
     case 1: s = io_write_obj(mesh, af.fp); break;
     case 2: s = io_write_ply(mesh, af.fp); break;
