@@ -74,7 +74,8 @@ static void json_number_or_null(json_writer *w, double v)
 static void write_provenance(json_writer *w, const struct neuv_unwrap_result *r)
 {
     chart_figures *cf = chart_figures_compute(r);
-    if (!cf || !r->chart_source) { mem_free(cf); return; }
+    if (!cf) { w->failed = 1; return; } /* out of memory: no report rather than one without provenance */
+    if (!r->chart_source) { mem_free(cf); return; }
     int count[CHART_SOURCE_COUNT] = {0};
     double area[CHART_SOURCE_COUNT] = {0}, total = 0, nq = 0, lq = 0, qa = 0, la = 0;
     for (int c = 0; c < r->n_charts; c++) {
