@@ -43,6 +43,8 @@
  * (neuv_atlas_output) belong to the object they came from and stay valid
  * until it is destroyed or its stages run again. Input arrays are copied:
  * the caller may free them once the call returns.
+ * Memory comes from the C library's allocator unless the application sets
+ * its own, once, first (neuv_set_allocator).
  *
  * Errors: every fallible call returns a neuv_status. On failure a one-line
  * message saying what is wrong is available from neuv_last_error() (per
@@ -71,6 +73,8 @@
 #define NEUV_API
 #endif
 
+#include <stddef.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -93,7 +97,8 @@ NEUV_API const char *neuv_status_name(neuv_status status);
 NEUV_API int neuv_exit_code(neuv_status status);
 /* "0.1.0". */
 NEUV_API const char *neuv_version(void);
-/* Releases a string or array the library returned by pointer (NULL: nothing). */
+/* Releases a string or array the library returned by pointer, with the
+ * allocator it was made with (NULL: nothing). */
 NEUV_API void neuv_free(void *ptr);
 
 /* ---- callbacks ---------------------------------------------------------- */
@@ -121,6 +126,36 @@ typedef struct neuv_callbacks {
 } neuv_callbacks;
 
 /* ---- meshes ------------------------------------------------------------- */
+
+/* ---- memory ------------------------------------------------------------ */
+
+/* An application's allocator. The functions have the contracts of malloc,
+ * realloc and free with `user` passed first, except that neuv never asks
+ * alloc or realloc for 0 bytes, never passes realloc a NULL ptr, and never
+ * passes free a NULL ptr. A failing alloc or realloc returns NULL (realloc
+ * then leaves ptr allocated as it was); neuv then frees what it holds and
+ * the call returns NEUV_ERR_NOMEM. Alignment as malloc's. The functions are
+ * called from several threads at once when an unwrap runs on several
+ * threads, so they must be thread-safe. */
+typedef struct neuv_allocator {
+    void *(*alloc)(void *user, size_t size);
+    void *(*realloc)(void *user, void *ptr, size_t size);
+    void (*free)(void *user, void *ptr);
+    void *user;
+} neuv_allocator;
+
+/* Routes neuv's allocations through *a (copied; NULL, or an allocator
+ * lacking any of the three functions, restores the C library's).
+ * Process-wide, like xatlas's SetAlloc: call it before any other neuv call
+ * and never while one runs; an object or string made under one allocator is
+ * released under the same one, so change it only when none is alive.
+ * CHOLMOD's allocations go through it too: while an allocator is set it is
+ * also SuiteSparse's process-wide allocator (SuiteSparse_config, put back on
+ * NULL), so an application that calls SuiteSparse itself gets it there as
+ * well. Not routed: what OpenBLAS, LAPACK(E), ARPACK, METIS, Assimp, CGAL,
+ * meshoptimizer, libpng and the C library's stdio allocate for themselves
+ * (their own allocators, or the C library's). */
+NEUV_API void neuv_set_allocator(const neuv_allocator *a);
 
 /* A triangle mesh, optionally with per-corner UVs. */
 typedef struct neuv_mesh neuv_mesh;
@@ -824,7 +859,9 @@ typedef struct neuv_unwrap_result neuv_unwrap_result;
 NEUV_API neuv_status neuv_unwrap(const neuv_mesh *mesh, const neuv_unwrap_options *opts, neuv_unwrap_result **out);
 NEUV_API const neuv_mesh *neuv_unwrap_mesh(const neuv_unwrap_result *r);
 NEUV_API int neuv_unwrap_chart_count(const neuv_unwrap_result *r);
-/* The JSON report (release with neuv_free). */
+/* The JSON report (docs/report.md), released with neuv_free; NULL when
+ * out of memory (neuv_last_error says so). load_seconds and export_seconds
+ * are the caller's own stages, added to the report. */
 NEUV_API char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_name,
                                        double load_seconds, double export_seconds);
 NEUV_API void neuv_unwrap_result_free(neuv_unwrap_result *r);

@@ -10,8 +10,6 @@
 #include "mesh/clean.h"
 #include "mesh/mesh.h"
 
-void neuv_free(void *ptr) { mem_free(ptr); }
-
 void neuv_mesh_decl_init(neuv_mesh_decl *d)
 {
     memset(d, 0, sizeof *d);

@@ -2,6 +2,8 @@
 
 #include <stdlib.h>
 
+#include "core/mem.h"
+
 typedef struct hull_sort_ctx { const double *p; int i; } hull_sort_ctx;
 
 static int cmp_point(const void *a, const void *b)
@@ -21,9 +23,9 @@ static double cross(const double *o, const double *a, const double *b)
 int convex_hull_2d(const double *p, int n, int *hull)
 {
     if (n <= 0) return 0;
-    hull_sort_ctx *s = malloc(sizeof *s * (size_t)n);
-    int *h = malloc(sizeof *h * (size_t)(2 * n + 1));
-    if (!s || !h) { free(s); free(h); return -1; }
+    hull_sort_ctx *s = mem_alloc(sizeof *s * (size_t)n);
+    int *h = mem_alloc(sizeof *h * (size_t)(2 * n + 1));
+    if (!s || !h) { mem_free(s); mem_free(h); return -1; }
     for (int i = 0; i < n; i++) { s[i].p = p; s[i].i = i; }
     qsort(s, (size_t)n, sizeof *s, cmp_point);
     /* Drop exact duplicates so degenerate charts give 1 or 2 hull points. */
@@ -38,7 +40,7 @@ int convex_hull_2d(const double *p, int n, int *hull)
     }
     if (m <= 2) {
         for (int i = 0; i < m; i++) hull[i] = s[i].i;
-        free(s); free(h);
+        mem_free(s); mem_free(h);
         return m;
     }
     int k = 0;
@@ -53,6 +55,6 @@ int convex_hull_2d(const double *p, int n, int *hull)
     k--; /* the last point repeats the first */
     if (k < 2) k = 2; /* all points collinear: keep the two extremes */
     for (int i = 0; i < k; i++) hull[i] = h[i];
-    free(s); free(h);
+    mem_free(s); mem_free(h);
     return k;
 }

@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/mem.h"
+
 /* Pixels are grown by this much so that the similarity applied to the final
  * UVs (computed afresh, rounding differently) never leaves a marked pixel. */
 static const double raster_eps = 1e-7;
@@ -11,14 +13,14 @@ static const double raster_eps = 1e-7;
 static int footprint_alloc(footprint *f, int w, int h)
 {
     f->w = w; f->h = h;
-    f->bits = calloc((size_t)w * (size_t)h > 0 ? (size_t)w * (size_t)h : 1, 1);
+    f->bits = mem_calloc((size_t)w * (size_t)h > 0 ? (size_t)w * (size_t)h : 1, 1);
     return f->bits ? 0 : -1;
 }
 
 void footprint_free(footprint *f)
 {
     if (!f) return;
-    free(f->bits);
+    mem_free(f->bits);
     f->bits = NULL;
     f->w = f->h = 0;
 }
@@ -76,6 +78,7 @@ int footprint_dilate(const footprint *in, int r, footprint *out)
 {
     int w = in->w + 2 * r, h = in->h + 2 * r;
     footprint tmp;
+    memset(out, 0, sizeof *out); /* empty on failure, so footprint_free is safe */
     if (footprint_alloc(&tmp, w, in->h) != 0) return -1;
     if (footprint_alloc(out, w, h) != 0) { footprint_free(&tmp); return -1; }
     /* Separable: a square structuring element is a row max then a column max. */
@@ -127,10 +130,10 @@ int footprint_to_spans(const footprint *in, footprint_spans *out)
         for (int i = 0; i < in->w; i++)
             if (row[i] && (i == 0 || !row[i - 1])) n++;
     }
-    out->row_first = malloc(sizeof(int) * (size_t)(in->h + 1));
-    out->row_width = malloc(sizeof(int) * (size_t)(in->h > 0 ? in->h : 1));
-    out->x0 = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
-    out->x1 = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    out->row_first = mem_alloc(sizeof(int) * (size_t)(in->h + 1));
+    out->row_width = mem_alloc(sizeof(int) * (size_t)(in->h > 0 ? in->h : 1));
+    out->x0 = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    out->x1 = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
     if (!out->row_first || !out->row_width || !out->x0 || !out->x1) { footprint_spans_free(out); return -1; }
     n = 0;
     for (int j = 0; j < in->h; j++) {
@@ -149,16 +152,16 @@ int footprint_to_spans(const footprint *in, footprint_spans *out)
     out->row_first[in->h] = n;
     out->count = n;
     /* Wide rows first: a blocked wide span lets the search jump far. */
-    out->row_order = malloc(sizeof(int) * (size_t)(in->h > 0 ? in->h : 1));
+    out->row_order = mem_alloc(sizeof(int) * (size_t)(in->h > 0 ? in->h : 1));
     if (!out->row_order) { footprint_spans_free(out); return -1; }
     int maxw = 0;
     for (int j = 0; j < in->h; j++) if (out->row_width[j] > maxw) maxw = out->row_width[j];
-    int *count = calloc((size_t)maxw + 2, sizeof *count);
+    int *count = mem_calloc((size_t)maxw + 2, sizeof *count);
     if (!count) { footprint_spans_free(out); return -1; }
     for (int j = 0; j < in->h; j++) count[maxw - out->row_width[j] + 1]++;
     for (int k = 1; k <= maxw + 1; k++) count[k] += count[k - 1];
     for (int j = 0; j < in->h; j++) out->row_order[count[maxw - out->row_width[j]]++] = j;
-    free(count);
+    mem_free(count);
     return 0;
 }
 
@@ -177,6 +180,6 @@ int footprint_equal(const footprint *a, const footprint *b)
 void footprint_spans_free(footprint_spans *s)
 {
     if (!s) return;
-    free(s->row_first); free(s->row_width); free(s->row_order); free(s->x0); free(s->x1);
+    mem_free(s->row_first); mem_free(s->row_width); mem_free(s->row_order); mem_free(s->x0); mem_free(s->x1);
     memset(s, 0, sizeof *s);
 }

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "atlas/convex_hull.h"
+#include "core/mem.h"
 
 static const double half_pi = 1.57079632679489661923;
 
@@ -27,10 +28,10 @@ int min_area_rect(const double *p, int n, double *angle, double *width, double *
 {
     *angle = 0; *width = 0; *height = 0;
     if (n <= 0) return 0;
-    int *hull = malloc(sizeof *hull * (size_t)n);
+    int *hull = mem_alloc(sizeof *hull * (size_t)n);
     if (!hull) return -1;
     int h = convex_hull_2d(p, n, hull);
-    if (h < 0) { free(hull); return -1; }
+    if (h < 0) { mem_free(hull); return -1; }
     double best = INFINITY;
     extents(p, hull, h, 1, 0, width, height);
     best = *width * *height;
@@ -51,6 +52,6 @@ int min_area_rect(const double *p, int n, double *angle, double *width, double *
         /* Relative tolerance keeps the choice stable under rounding. */
         if (w * ht < best * (1 - 1e-12)) { best = w * ht; *angle = t; *width = w; *height = ht; }
     }
-    free(hull);
+    mem_free(hull);
     return 0;
 }

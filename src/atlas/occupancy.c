@@ -3,6 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/mem.h"
+
 static uint64_t *row_of(const occupancy *o, int y) { return o->bits + (size_t)y * o->words; }
 
 static void set_range(uint64_t *row, int lo, int hi)
@@ -53,8 +55,8 @@ int occupancy_init(occupancy *o, int size, int border)
     memset(o, 0, sizeof *o);
     o->size = size;
     o->words = (size + 63) / 64;
-    o->bits = calloc((size_t)size * o->words, sizeof *o->bits);
-    o->free_run = malloc(sizeof *o->free_run * (size_t)size);
+    o->bits = mem_calloc((size_t)size * o->words, sizeof *o->bits);
+    o->free_run = mem_alloc(sizeof *o->free_run * (size_t)size);
     if (!o->bits || !o->free_run) { occupancy_free(o); return -1; }
     for (int y = 0; y < size; y++) {
         uint64_t *row = row_of(o, y);
@@ -69,7 +71,7 @@ int occupancy_init(occupancy *o, int size, int border)
 
 void occupancy_free(occupancy *o)
 {
-    free(o->bits); free(o->free_run);
+    mem_free(o->bits); mem_free(o->free_run);
     memset(o, 0, sizeof *o);
 }
 

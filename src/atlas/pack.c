@@ -8,6 +8,7 @@
 #include "atlas/min_area_rect.h"
 #include "atlas/occupancy.h"
 #include "core/error.h"
+#include "core/mem.h"
 #include "core/rng.h"
 
 static const double half_pi = 1.57079632679489661923;
@@ -193,7 +194,7 @@ static int footprint_copy(const footprint *in, footprint *out)
 {
     out->w = in->w;
     out->h = in->h;
-    out->bits = malloc((size_t)in->w * in->h + 1);
+    out->bits = mem_alloc((size_t)in->w * in->h + 1);
     if (!out->bits) return -1;
     memcpy(out->bits, in->bits, (size_t)in->w * in->h);
     return 0;
@@ -207,8 +208,8 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
 {
     const int R = P->resolution, pad = P->padding;
     occupancy occ;
-    double *q = malloc(sizeof *q * 2 * (size_t)(P->max_verts > 0 ? P->max_verts : 1));
-    if (!q || occupancy_init(&occ, R, pad) != 0) { free(q); return -1; }
+    double *q = mem_alloc(sizeof *q * 2 * (size_t)(P->max_verts > 0 ? P->max_verts : 1));
+    if (!q || occupancy_init(&occ, R, pad) != 0) { mem_free(q); return -1; }
     if (pc->g != g) pack_cache_reset(pc, g);
     double placed = 0, total = 0;
     for (int i = 0; i < P->ncharts; i++) {
@@ -283,7 +284,7 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
         footprint_free(&best_fp);
     }
     occupancy_free(&occ);
-    free(q);
+    mem_free(q);
     *frac_placed = total > 0 ? placed / total : 1;
     return rc;
 }
@@ -322,15 +323,15 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
 {
     int nf = m->nf;
     P->ncharts = ncharts;
-    P->ch = calloc((size_t)ncharts + 1, sizeof *P->ch);
-    for (int h = 0; h < PACK_ORDERS; h++) P->sorted[h] = malloc(sizeof *P->sorted[h] * ((size_t)ncharts + 1));
-    P->ltri = malloc(sizeof *P->ltri * 3 * ((size_t)nf + 1));
-    int *order = malloc(sizeof *order * ((size_t)nf + 1));
-    int *start = calloc((size_t)ncharts + 2, sizeof *start);
-    int *stamp = malloc(sizeof *stamp * ((size_t)m->nuv + 1));
-    int *map = malloc(sizeof *map * ((size_t)m->nuv + 1));
-    *new_tri_uv = malloc(sizeof **new_tri_uv * 3 * ((size_t)nf + 1));
-    *old_of_new = malloc(sizeof **old_of_new * 3 * ((size_t)nf + 1));
+    P->ch = mem_calloc((size_t)ncharts + 1, sizeof *P->ch);
+    for (int h = 0; h < PACK_ORDERS; h++) P->sorted[h] = mem_alloc(sizeof *P->sorted[h] * ((size_t)ncharts + 1));
+    P->ltri = mem_alloc(sizeof *P->ltri * 3 * ((size_t)nf + 1));
+    int *order = mem_alloc(sizeof *order * ((size_t)nf + 1));
+    int *start = mem_calloc((size_t)ncharts + 2, sizeof *start);
+    int *stamp = mem_alloc(sizeof *stamp * ((size_t)m->nuv + 1));
+    int *map = mem_alloc(sizeof *map * ((size_t)m->nuv + 1));
+    *new_tri_uv = mem_alloc(sizeof **new_tri_uv * 3 * ((size_t)nf + 1));
+    *old_of_new = mem_alloc(sizeof **old_of_new * 3 * ((size_t)nf + 1));
     neuv_status st = NEUV_OK;
     int sorted_ok = 1;
     for (int h = 0; h < PACK_ORDERS; h++) sorted_ok = sorted_ok && P->sorted[h];
@@ -366,7 +367,7 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
         if (next - ci->v_begin > P->max_verts) P->max_verts = next - ci->v_begin;
     }
     *nuv_new = next;
-    P->L = malloc(sizeof *P->L * 2 * ((size_t)next + 1));
+    P->L = mem_alloc(sizeof *P->L * 2 * ((size_t)next + 1));
     if (!P->L) { st = error_nomem("atlas packing"); goto done; }
     for (int c = 0; c < ncharts; c++) {
         chart_info *ci = &P->ch[c];
@@ -419,7 +420,7 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
         ci->W = hi[0] - lo[0]; ci->H = hi[1] - lo[1];
         chart_fit_angle(L, nv, ci);
     }
-    chart_order *co = malloc(sizeof *co * ((size_t)ncharts + 1));
+    chart_order *co = mem_alloc(sizeof *co * ((size_t)ncharts + 1));
     if (!co) { st = error_nomem("atlas packing"); goto done; }
     for (int h = 0; h < PACK_ORDERS; h++) {
         for (int c = 0; c < ncharts; c++) {
@@ -433,16 +434,16 @@ static neuv_status pack_prepare(const neuv_mesh *m, const int *face_chart, int n
         qsort(co, (size_t)ncharts, sizeof *co, cmp_chart_order);
         for (int c = 0; c < ncharts; c++) P->sorted[h][c] = co[c].id;
     }
-    free(co);
+    mem_free(co);
 done:
-    free(order); free(start); free(stamp); free(map);
+    mem_free(order); mem_free(start); mem_free(stamp); mem_free(map);
     return st;
 }
 
 static void pack_ctx_free(pack_ctx *P)
 {
-    free(P->ch); for (int h = 0; h < PACK_ORDERS; h++) free(P->sorted[h]);
-    free(P->ltri); free(P->L);
+    mem_free(P->ch); for (int h = 0; h < PACK_ORDERS; h++) mem_free(P->sorted[h]);
+    mem_free(P->ltri); mem_free(P->L);
     memset(P, 0, sizeof *P);
 }
 
@@ -514,7 +515,7 @@ static int pack_polish(pack_ctx *P, pack_cache *pc, double *g, placement *pl, pl
 {
     static const double steps[] = {0.03, 0.01, 0.004};
     if (P->ncharts < 2 || P->ncharts > PACK_POLISH_MAX_CHARTS) return 0;
-    chart_order *co = malloc(sizeof *co * (size_t)P->ncharts);
+    chart_order *co = mem_alloc(sizeof *co * (size_t)P->ncharts);
     if (!co) return -1;
     rng r;
     rng_seed(&r, 0x70ac4u);
@@ -545,7 +546,7 @@ static int pack_polish(pack_ctx *P, pack_cache *pc, double *g, placement *pl, pl
             }
         }
     }
-    free(co);
+    mem_free(co);
     return rc;
 }
 
@@ -583,13 +584,13 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     neuv_status st = pack_prepare(m, face_chart, ncharts, o.keep_scale, &P, &new_tri_uv, &old_of_new, &nuv_new);
     if (st != NEUV_OK) goto done;
     cache.n = ncharts * (pack_turns_max + 1);
-    cache.t = calloc((size_t)cache.n + 1, sizeof *cache.t);
+    cache.t = mem_calloc((size_t)cache.n + 1, sizeof *cache.t);
     cache.budget = PACK_CACHE_BYTES;
     if (!cache.t) { st = error_nomem("atlas packing"); goto done; }
-    pl = calloc((size_t)ncharts + 1, sizeof *pl);
-    best_pl = calloc((size_t)ncharts + 1, sizeof *best_pl);
-    uv_new = malloc(sizeof *uv_new * 2 * ((size_t)nuv_new + 1));
-    q = malloc(sizeof *q * 2 * ((size_t)P.max_verts + 1));
+    pl = mem_calloc((size_t)ncharts + 1, sizeof *pl);
+    best_pl = mem_calloc((size_t)ncharts + 1, sizeof *best_pl);
+    uv_new = mem_alloc(sizeof *uv_new * 2 * ((size_t)nuv_new + 1));
+    q = mem_alloc(sizeof *q * 2 * ((size_t)P.max_verts + 1));
     if (!pl || !best_pl || !uv_new || !q) { st = error_nomem("atlas packing"); goto done; }
 
     /* Upper bound on the global scale: the charts' total area cannot exceed
@@ -675,8 +676,8 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     }
 done:
     if (cache.t) pack_cache_reset(&cache, 0);
-    free(cache.t);
+    mem_free(cache.t);
     pack_ctx_free(&P);
-    free(new_tri_uv); free(old_of_new); free(pl); free(best_pl); free(uv_new); free(q);
+    mem_free(new_tri_uv); mem_free(old_of_new); mem_free(pl); mem_free(best_pl); mem_free(uv_new); mem_free(q);
     return st;
 }

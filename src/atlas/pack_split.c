@@ -9,6 +9,7 @@
 #include "charts/charts.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 
 void pack_split_default_options(pack_split_options *o)
@@ -24,11 +25,11 @@ void pack_split_default_options(pack_split_options *o)
 /* UV area over convex-hull area of every chart (1 for a chart with no area). */
 static neuv_status chart_convexity(const neuv_mesh *m, const int *face_chart, int n_charts, double *cvx)
 {
-    int *count = calloc((size_t)n_charts + 1, sizeof(int));
-    int *start = calloc((size_t)n_charts + 2, sizeof(int));
-    double *pts = malloc(sizeof(double) * 6 * (size_t)m->nf);
-    int *hull = malloc(sizeof(int) * 3 * (size_t)m->nf);
-    double *area = calloc((size_t)n_charts + 1, sizeof(double));
+    int *count = mem_calloc((size_t)n_charts + 1, sizeof(int));
+    int *start = mem_calloc((size_t)n_charts + 2, sizeof(int));
+    double *pts = mem_alloc(sizeof(double) * 6 * (size_t)m->nf);
+    int *hull = mem_alloc(sizeof(int) * 3 * (size_t)m->nf);
+    double *area = mem_calloc((size_t)n_charts + 1, sizeof(double));
     neuv_status s = NEUV_OK;
     if (!count || !start || !pts || !hull || !area) { s = error_nomem("chart convexity"); goto done; }
     for (int f = 0; f < m->nf; f++) count[face_chart[f]]++;
@@ -56,7 +57,7 @@ static neuv_status chart_convexity(const neuv_mesh *m, const int *face_chart, in
         cvx[c] = ha > 0 ? area[c] / ha : 1;
     }
 done:
-    free(count); free(start); free(pts); free(hull); free(area);
+    mem_free(count); mem_free(start); mem_free(pts); mem_free(hull); mem_free(area);
     return s;
 }
 
@@ -88,7 +89,7 @@ static int grow(int **a, int *cap, int need)
     if (need <= *cap) return 0;
     int nc = *cap ? *cap : 16;
     while (nc < need) nc *= 2;
-    int *na = realloc(*a, sizeof(int) * (size_t)nc);
+    int *na = mem_realloc(*a, sizeof(int) * (size_t)nc);
     if (!na) return -1;
     *a = na;
     *cap = nc;
@@ -109,7 +110,7 @@ neuv_status pack_split_charts(const neuv_mesh *m, int *face_chart, int *n_charts
         return error_set(NEUV_ERR_INPUT, "splitting for packing needs a mesh with UVs and charts");
     double t0 = now_seconds();
     int n = *n_charts, cap = 0, *parent = NULL, *tried = NULL, tcap = 0;
-    int *trial = malloc(sizeof(int) * (size_t)m->nf);
+    int *trial = mem_alloc(sizeof(int) * (size_t)m->nf);
     double *cvx = NULL;
     neuv_status s = NEUV_OK;
     if (!trial || grow(&parent, &cap, n) || grow(&tried, &tcap, n)) { s = error_nomem("chart splitting"); goto done; }
@@ -124,8 +125,8 @@ neuv_status pack_split_charts(const neuv_mesh *m, int *face_chart, int *n_charts
     int cvx_charts = 0; /* charts cvx was computed for: it changes only with a kept cut */
     while (rep->trials < o.max_trials && rep->splits < o.max_splits && n < o.max_charts) {
         if (cvx_charts != n) {
-            free(cvx);
-            cvx = malloc(sizeof(double) * (size_t)n);
+            mem_free(cvx);
+            cvx = mem_alloc(sizeof(double) * (size_t)n);
             if (!cvx) { s = error_nomem("chart splitting"); break; }
             if ((s = chart_convexity(m, face_chart, n, cvx)) != NEUV_OK) break;
             cvx_charts = n;
@@ -164,12 +165,12 @@ neuv_status pack_split_charts(const neuv_mesh *m, int *face_chart, int *n_charts
         rep->efficiency_after = eff;
     }
 done:
-    free(trial);
-    free(tried);
-    free(cvx);
+    mem_free(trial);
+    mem_free(tried);
+    mem_free(cvx);
     if (s != NEUV_OK && s != NEUV_ERR_NOMEM) s = NEUV_OK; /* the charts stand as they were */
     rep->seconds = now_seconds() - t0;
-    if (s != NEUV_OK) { free(parent); return s; }
+    if (s != NEUV_OK) { mem_free(parent); return s; }
     *n_charts = n;
     *parent_out = parent;
     return NEUV_OK;

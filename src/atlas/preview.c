@@ -10,6 +10,7 @@
 #include "atlas/render_views.h"
 #include "atlas/uv_charts.h"
 #include "core/error.h"
+#include "core/mem.h"
 #include "io/png_write.h"
 
 static const int checker_squares = 32;
@@ -96,14 +97,14 @@ static neuv_status write_uv_png(const neuv_mesh *m, const char *path, preview_co
     static const uint8_t outside[3] = {52, 54, 60}, inside[3] = {250, 250, 250};
     raster_image img;
     if (raster_image_init(&img, S, S, outside) != 0) return error_nomem("preview image");
-    int *chart = malloc(sizeof *chart * (size_t)(m->nf > 0 ? m->nf : 1));
-    unsigned char *flipped = calloc((size_t)(m->nf > 0 ? m->nf : 1), 1);
-    double *value = malloc(sizeof *value * (size_t)(m->nf > 0 ? m->nf : 1));
-    uv_paint paint = {&img, calloc((size_t)S * S, 1), malloc(sizeof(int) * (size_t)S * S)};
+    int *chart = mem_alloc(sizeof *chart * (size_t)(m->nf > 0 ? m->nf : 1));
+    unsigned char *flipped = mem_calloc((size_t)(m->nf > 0 ? m->nf : 1), 1);
+    double *value = mem_alloc(sizeof *value * (size_t)(m->nf > 0 ? m->nf : 1));
+    uv_paint paint = {&img, mem_calloc((size_t)S * S, 1), mem_alloc(sizeof(int) * (size_t)S * S)};
     double *chart_sign = NULL;
     neuv_status st = NEUV_OK;
     int nc = (chart && flipped && value && paint.count && paint.owner) ? uv_charts(m, chart) : -1;
-    if (nc >= 0) chart_sign = calloc((size_t)nc + 1, sizeof *chart_sign);
+    if (nc >= 0) chart_sign = mem_calloc((size_t)nc + 1, sizeof *chart_sign);
     if (nc < 0 || !chart_sign) { st = error_nomem("preview"); goto done; }
 
     double lo[2] = {0, 0}, hi[2] = {1, 1};
@@ -195,7 +196,7 @@ static neuv_status write_uv_png(const neuv_mesh *m, const char *path, preview_co
     st = png_write_rgb(path, img.w, img.h, img.rgb);
 done:
     raster_image_free(&img);
-    free(chart); free(flipped); free(value); free(paint.count); free(paint.owner); free(chart_sign);
+    mem_free(chart); mem_free(flipped); mem_free(value); mem_free(paint.count); mem_free(paint.owner); mem_free(chart_sign);
     return st;
 }
 
@@ -219,7 +220,7 @@ neuv_status preview_write_sized(const neuv_mesh *m, const char *prefix, preview_
     if (size < 64 || size > 16384) return error_set(NEUV_ERR_INPUT, "preview size %d px is outside 64..16384", size);
     if (!m || m->nuv <= 0 || !m->tri_uv) return error_set(NEUV_ERR_INPUT, "preview needs a mesh with UVs");
     size_t n = strlen(prefix) + 16;
-    char *path = malloc(n);
+    char *path = mem_alloc(n);
     if (!path) return error_nomem("preview path");
     snprintf(path, n, "%s-uv.png", prefix);
     neuv_status st = write_uv_png(m, path, color, size);
@@ -227,7 +228,7 @@ neuv_status preview_write_sized(const neuv_mesh *m, const char *prefix, preview_
         snprintf(path, n, "%s-checker.png", prefix);
         st = write_views_png(m, NULL, path, size);
     }
-    free(path);
+    mem_free(path);
     return st;
 }
 

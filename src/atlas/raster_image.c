@@ -4,10 +4,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/mem.h"
+
 int raster_image_init(raster_image *img, int w, int h, const uint8_t c[3])
 {
     img->w = w; img->h = h;
-    img->rgb = malloc((size_t)w * (size_t)h * 3);
+    img->rgb = mem_alloc((size_t)w * (size_t)h * 3);
     if (!img->rgb) return -1;
     for (size_t i = 0; i < (size_t)w * h; i++) memcpy(img->rgb + 3 * i, c, 3);
     return 0;
@@ -15,7 +17,7 @@ int raster_image_init(raster_image *img, int w, int h, const uint8_t c[3])
 
 void raster_image_free(raster_image *img)
 {
-    free(img->rgb);
+    mem_free(img->rgb);
     img->rgb = NULL;
     img->w = img->h = 0;
 }

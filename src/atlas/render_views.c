@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 const uint8_t render_background[3] = {36, 38, 44};
 
@@ -113,7 +114,7 @@ neuv_status render_four_views(const neuv_mesh *m, const int *face_label, int che
     if (size < 16) size = 16;
     int cell = size / 2;
     if (raster_image_init(out, 2 * cell, 2 * cell, render_background) != 0) return error_nomem("preview image");
-    float *depth = malloc(sizeof *depth * (size_t)out->w * out->h);
+    float *depth = mem_alloc(sizeof *depth * (size_t)out->w * out->h);
     if (!depth) { raster_image_free(out); return error_nomem("preview depth buffer"); }
     for (size_t i = 0; i < (size_t)out->w * out->h; i++) depth[i] = 0;
     double lo[3], hi[3], center[3], radius = 0;
@@ -159,6 +160,6 @@ neuv_status render_four_views(const neuv_mesh *m, const int *face_label, int che
     static const uint8_t sep[3] = {70, 72, 80};
     raster_fill_rect(out, cell - 1, 0, cell + 1, out->h, sep);
     raster_fill_rect(out, 0, cell - 1, out->w, cell + 1, sep);
-    free(depth);
+    mem_free(depth);
     return NEUV_OK;
 }

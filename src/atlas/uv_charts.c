@@ -2,6 +2,7 @@
 
 #include <stdlib.h>
 
+#include "core/mem.h"
 #include "core/union_find.h"
 
 typedef struct half_edge { int lo, hi, face, corner; } half_edge;
@@ -31,9 +32,9 @@ static int same_uv(const double *a, const double *b)
 int uv_charts(const neuv_mesh *m, int *face_chart)
 {
     size_t nh = (size_t)m->nf * 3;
-    half_edge *he = malloc(sizeof *he * (nh > 0 ? nh : 1));
+    half_edge *he = mem_alloc(sizeof *he * (nh > 0 ? nh : 1));
     union_find uf;
-    if (!he || uf_init(&uf, m->nf) != 0) { free(he); return -1; }
+    if (!he || uf_init(&uf, m->nf) != 0) { mem_free(he); return -1; }
     for (int f = 0; f < m->nf; f++)
         for (int k = 0; k < 3; k++) {
             int a = m->tri[3 * f + k], b = m->tri[3 * f + (k + 1) % 3];
@@ -58,7 +59,7 @@ int uv_charts(const neuv_mesh *m, int *face_chart)
             }
         i = j;
     }
-    free(he);
+    mem_free(he);
     int n = uf_labels(&uf, face_chart);
     uf_free(&uf);
     return n;

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "charts/min_heap.h"
+#include "core/mem.h"
 
 typedef struct vertex_graph {
     int *start, *face; /* vertex -> incident local faces (CSR) */
@@ -16,16 +17,16 @@ typedef struct vertex_graph {
 
 static int vertex_graph_build(const chart_local *L, vertex_graph *vg)
 {
-    vg->start = calloc((size_t)L->nv + 1, sizeof(int));
-    vg->face = malloc(sizeof(int) * (size_t)(L->nf > 0 ? L->nf : 1) * 3);
+    vg->start = mem_calloc((size_t)L->nv + 1, sizeof(int));
+    vg->face = mem_alloc(sizeof(int) * (size_t)(L->nf > 0 ? L->nf : 1) * 3);
     if (!vg->start || !vg->face) return -1;
     for (int i = 0; i < 3 * L->nf; i++) vg->start[L->tri[i] + 1]++;
     for (int v = 0; v < L->nv; v++) vg->start[v + 1] += vg->start[v];
-    int *fill = malloc(sizeof(int) * (size_t)(L->nv > 0 ? L->nv : 1));
+    int *fill = mem_alloc(sizeof(int) * (size_t)(L->nv > 0 ? L->nv : 1));
     if (!fill) return -1;
     for (int v = 0; v < L->nv; v++) fill[v] = vg->start[v];
     for (int i = 0; i < 3 * L->nf; i++) vg->face[fill[L->tri[i]]++] = i / 3;
-    free(fill);
+    mem_free(fill);
     return 0;
 }
 
@@ -110,18 +111,18 @@ typedef struct cut_work {
 
 static void cut_work_free(cut_work *w)
 {
-    free(w->vg.start); free(w->vg.face);
-    free(w->role); free(w->on_path); free(w->dist); free(w->parent1); free(w->parent);
+    mem_free(w->vg.start); mem_free(w->vg.face);
+    mem_free(w->role); mem_free(w->on_path); mem_free(w->dist); mem_free(w->parent1); mem_free(w->parent);
 }
 
 static int cut_work_init(const chart_local *L, cut_work *w)
 {
     size_t n1 = (size_t)(L->nv > 0 ? L->nv : 1);
-    w->role = malloc(n1);
-    w->on_path = calloc(n1, 1);
-    w->dist = malloc(sizeof(double) * n1);
-    w->parent1 = malloc(sizeof(int) * n1);
-    w->parent = malloc(sizeof(int) * n1);
+    w->role = mem_alloc(n1);
+    w->on_path = mem_calloc(n1, 1);
+    w->dist = mem_alloc(sizeof(double) * n1);
+    w->parent1 = mem_alloc(sizeof(int) * n1);
+    w->parent = mem_alloc(sizeof(int) * n1);
     if (!w->role || !w->on_path || !w->dist || !w->parent1 || !w->parent) return -1;
     return vertex_graph_build(L, &w->vg);
 }
@@ -187,10 +188,10 @@ done:
 int chart_local_cut_and_grow(const chart_local *L, const int *vloop, int *part)
 {
     cut_work w = {0};
-    unsigned char *cut = calloc((size_t)L->nf * 3 + 1, 1);
-    int *seeds = malloc(sizeof(int) * ((size_t)L->nf * 3 + 1));
-    int *lab = malloc(sizeof(int) * ((size_t)L->nf * 3 + 1));
-    double *fdist = malloc(sizeof(double) * ((size_t)L->nf + 1));
+    unsigned char *cut = mem_calloc((size_t)L->nf * 3 + 1, 1);
+    int *seeds = mem_alloc(sizeof(int) * ((size_t)L->nf * 3 + 1));
+    int *lab = mem_alloc(sizeof(int) * ((size_t)L->nf * 3 + 1));
+    double *fdist = mem_alloc(sizeof(double) * ((size_t)L->nf + 1));
     int result = -1;
     if (!cut || !seeds || !lab || !fdist || cut_work_init(L, &w) != 0) goto done;
     int end = first_cut(L, vloop, &w);
@@ -221,6 +222,6 @@ int chart_local_cut_and_grow(const chart_local *L, const int *vloop, int *part)
     result = 1;
 done:
     cut_work_free(&w);
-    free(cut); free(seeds); free(lab); free(fdist);
+    mem_free(cut); mem_free(seeds); mem_free(lab); mem_free(fdist);
     return result;
 }

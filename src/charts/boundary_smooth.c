@@ -19,6 +19,7 @@
 
 #include "charts/face_graph.h"
 #include "core/error.h"
+#include "core/mem.h"
 
 typedef struct vertex_star {
     int *start;          /* #V + 1 offsets into face */
@@ -28,19 +29,19 @@ typedef struct vertex_star {
 
 static void vertex_star_free(vertex_star *s)
 {
-    free(s->start); free(s->face); free(s->open);
+    mem_free(s->start); mem_free(s->face); mem_free(s->open);
 }
 
 static neuv_status vertex_star_build(const neuv_mesh *m, const face_graph *g, vertex_star *s)
 {
     int nv = m->nv, nf = m->nf;
-    s->start = calloc((size_t)nv + 1, sizeof(int));
-    s->face = malloc(sizeof(int) * 3 * (size_t)(nf > 0 ? nf : 1));
-    s->open = calloc((size_t)(nv > 0 ? nv : 1), 1);
+    s->start = mem_calloc((size_t)nv + 1, sizeof(int));
+    s->face = mem_alloc(sizeof(int) * 3 * (size_t)(nf > 0 ? nf : 1));
+    s->open = mem_calloc((size_t)(nv > 0 ? nv : 1), 1);
     if (!s->start || !s->face || !s->open) { vertex_star_free(s); return error_nomem("vertex stars"); }
     for (int i = 0; i < 3 * nf; i++) s->start[m->tri[i] + 1]++;
     for (int v = 0; v < nv; v++) s->start[v + 1] += s->start[v];
-    int *fill = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+    int *fill = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
     if (!fill) { vertex_star_free(s); return error_nomem("vertex stars"); }
     memcpy(fill, s->start, sizeof(int) * (size_t)nv);
     for (int f = 0; f < nf; f++)
@@ -49,7 +50,7 @@ static neuv_status vertex_star_build(const neuv_mesh *m, const face_graph *g, ve
             s->face[fill[v]++] = f;
             if (g->adj[3 * f + k] < 0) s->open[v] = s->open[m->tri[3 * f + (k + 1) % 3]] = 1;
         }
-    free(fill);
+    mem_free(fill);
     return NEUV_OK;
 }
 

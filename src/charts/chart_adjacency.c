@@ -8,6 +8,7 @@
 
 #include "charts/face_graph.h"
 #include "core/error.h"
+#include "core/mem.h"
 
 typedef struct chart_pair { int a, b; double len; } chart_pair;
 
@@ -20,7 +21,7 @@ static int chart_pair_cmp(const void *pa, const void *pb)
 
 void chart_adjacency_free(chart_adjacency *adj)
 {
-    free(adj->a); free(adj->b); free(adj->length);
+    mem_free(adj->a); mem_free(adj->b); mem_free(adj->length);
     memset(adj, 0, sizeof *adj);
 }
 
@@ -36,7 +37,7 @@ neuv_status chart_adjacency_build(const neuv_mesh *m, const int *face_chart, cha
             int o = g.adj[3 * f + k];
             if (o > f && face_chart[o] != face_chart[f]) count++;
         }
-    chart_pair *pairs = malloc(sizeof *pairs * (count > 0 ? count : 1));
+    chart_pair *pairs = mem_alloc(sizeof *pairs * (count > 0 ? count : 1));
     if (!pairs) { face_graph_free(&g); return error_nomem("chart adjacency"); }
     count = 0;
     for (int f = 0; f < m->nf; f++)
@@ -53,11 +54,11 @@ neuv_status chart_adjacency_build(const neuv_mesh *m, const int *face_chart, cha
     for (size_t i = 0; i < count; i++)
         if (i == 0 || pairs[i].a != pairs[i - 1].a || pairs[i].b != pairs[i - 1].b) distinct++;
     size_t d1 = distinct > 0 ? distinct : 1;
-    adj->a = malloc(sizeof(int) * d1);
-    adj->b = malloc(sizeof(int) * d1);
-    adj->length = malloc(sizeof(double) * d1);
+    adj->a = mem_alloc(sizeof(int) * d1);
+    adj->b = mem_alloc(sizeof(int) * d1);
+    adj->length = mem_alloc(sizeof(double) * d1);
     if (!adj->a || !adj->b || !adj->length) {
-        free(pairs);
+        mem_free(pairs);
         chart_adjacency_free(adj);
         return error_nomem("chart adjacency");
     }
@@ -72,6 +73,6 @@ neuv_status chart_adjacency_build(const neuv_mesh *m, const int *face_chart, cha
         adj->length[n] += pairs[i].len;
     }
     adj->n = (int)distinct;
-    free(pairs);
+    mem_free(pairs);
     return NEUV_OK;
 }

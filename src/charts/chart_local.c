@@ -4,11 +4,12 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 neuv_status chart_scratch_init(chart_scratch *s, int nf, int nv)
 {
-    s->face_map = malloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
-    s->vert_map = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+    s->face_map = mem_alloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
+    s->vert_map = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
     if (!s->face_map || !s->vert_map) {
         chart_scratch_free(s);
         return error_nomem("chart scratch");
@@ -20,14 +21,14 @@ neuv_status chart_scratch_init(chart_scratch *s, int nf, int nv)
 
 void chart_scratch_free(chart_scratch *s)
 {
-    free(s->face_map); free(s->vert_map);
+    mem_free(s->face_map); mem_free(s->vert_map);
     s->face_map = s->vert_map = NULL;
 }
 
 void chart_local_free(chart_local *L)
 {
-    free(L->face); free(L->vert); free(L->tri); free(L->adj);
-    free(L->elen); free(L->cen); free(L->vpos);
+    mem_free(L->face); mem_free(L->vert); mem_free(L->tri); mem_free(L->adj);
+    mem_free(L->elen); mem_free(L->cen); mem_free(L->vpos);
     memset(L, 0, sizeof *L);
 }
 
@@ -37,13 +38,13 @@ neuv_status chart_local_build(const neuv_mesh *m, const face_graph *g, const int
     memset(L, 0, sizeof *L);
     size_t n1 = (size_t)(n > 0 ? n : 1);
     L->nf = n;
-    L->face = malloc(sizeof(int) * n1);
-    L->vert = malloc(sizeof(int) * n1 * 3);
-    L->tri = malloc(sizeof(int) * n1 * 3);
-    L->adj = malloc(sizeof(int) * n1 * 3);
-    L->elen = malloc(sizeof(double) * n1 * 3);
-    L->cen = malloc(sizeof(double) * n1 * 3);
-    L->vpos = malloc(sizeof(double) * n1 * 9);
+    L->face = mem_alloc(sizeof(int) * n1);
+    L->vert = mem_alloc(sizeof(int) * n1 * 3);
+    L->tri = mem_alloc(sizeof(int) * n1 * 3);
+    L->adj = mem_alloc(sizeof(int) * n1 * 3);
+    L->elen = mem_alloc(sizeof(double) * n1 * 3);
+    L->cen = mem_alloc(sizeof(double) * n1 * 3);
+    L->vpos = mem_alloc(sizeof(double) * n1 * 9);
     if (!L->face || !L->vert || !L->tri || !L->adj || !L->elen || !L->cen || !L->vpos) {
         chart_local_free(L);
         return error_nomem("chart");
@@ -76,7 +77,7 @@ neuv_status chart_local_build(const neuv_mesh *m, const face_graph *g, const int
 
 int chart_local_components(const chart_local *L, const int *part, const unsigned char *cut, int *comp)
 {
-    int *stack = malloc(sizeof(int) * (size_t)(L->nf > 0 ? L->nf : 1));
+    int *stack = mem_alloc(sizeof(int) * (size_t)(L->nf > 0 ? L->nf : 1));
     if (!stack) return -1;
     for (int i = 0; i < L->nf; i++) comp[i] = -1;
     int count = 0;
@@ -98,6 +99,6 @@ int chart_local_components(const chart_local *L, const int *part, const unsigned
         }
         count++;
     }
-    free(stack);
+    mem_free(stack);
     return count;
 }

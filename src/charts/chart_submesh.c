@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 neuv_status chart_submesh(const neuv_mesh *m, const int *face_chart, int id,
                           neuv_mesh **sub, int **vmap, int **fmap)
@@ -14,11 +15,11 @@ neuv_status chart_submesh(const neuv_mesh *m, const int *face_chart, int id,
     int nf = 0;
     for (int f = 0; f < m->nf; f++) nf += face_chart[f] == id;
     if (nf == 0) return error_set(NEUV_ERR_INPUT, "chart %d has no faces", id);
-    int *local = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
-    int *fm = malloc(sizeof(int) * (size_t)nf);
-    int *vm = malloc(sizeof(int) * (size_t)nf * 3);
+    int *local = mem_alloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+    int *fm = mem_alloc(sizeof(int) * (size_t)nf);
+    int *vm = mem_alloc(sizeof(int) * (size_t)nf * 3);
     if (!local || !fm || !vm) {
-        free(local); free(fm); free(vm);
+        mem_free(local); mem_free(fm); mem_free(vm);
         return error_nomem("chart submesh");
     }
     for (int v = 0; v < m->nv; v++) local[v] = -1;
@@ -33,18 +34,23 @@ neuv_status chart_submesh(const neuv_mesh *m, const int *face_chart, int id,
     }
     neuv_mesh *s = mesh_create(nv, nf, 0);
     if (!s) {
-        free(local); free(fm); free(vm);
+        mem_free(local); mem_free(fm); mem_free(vm);
         return error_nomem("chart submesh");
     }
     for (int v = 0; v < nv; v++) memcpy(s->pos + 3 * v, m->pos + 3 * vm[v], sizeof(double) * 3);
     for (int j = 0; j < nf; j++)
         for (int k = 0; k < 3; k++) s->tri[3 * j + k] = local[m->tri[3 * fm[j] + k]];
-    free(local);
-    /* Shrink the vertex map to its size; keeping the larger block is fine
-     * when realloc cannot shrink it. */
-    int *vm_small = realloc(vm, sizeof(int) * (size_t)nv);
+    mem_free(local);
+    /* Shrink the vertex map to its size. The larger block would do, but a
+     * failed allocation is reported, never worked around (the caller's
+     * allocator is out of memory). */
+    int *vm_small = mem_realloc(vm, sizeof(int) * (size_t)nv);
+    if (!vm_small) {
+        mesh_free(s); mem_free(fm); mem_free(vm);
+        return error_nomem("chart submesh");
+    }
     *sub = s;
-    *vmap = vm_small ? vm_small : vm;
+    *vmap = vm_small;
     *fmap = fm;
     return NEUV_OK;
 }

@@ -6,21 +6,22 @@
 #include <stdlib.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 neuv_status chart_local_shape(const chart_local *L, chart_shape *s, int *vloop)
 {
     int nv = L->nv, nf = L->nf;
-    int *out = calloc((size_t)(nv > 0 ? nv : 1), sizeof(int));
-    int *nxt = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
-    int *comp = malloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
+    int *out = mem_calloc((size_t)(nv > 0 ? nv : 1), sizeof(int));
+    int *nxt = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+    int *comp = mem_alloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
     if (!out || !nxt || !comp) {
-        free(out); free(nxt); free(comp);
+        mem_free(out); mem_free(nxt); mem_free(comp);
         return error_nomem("chart topology");
     }
     s->components = chart_local_components(L, NULL, NULL, comp);
-    free(comp);
+    mem_free(comp);
     if (s->components < 0) {
-        free(out); free(nxt);
+        mem_free(out); mem_free(nxt);
         return error_nomem("chart topology");
     }
     /* Boundary half-edges are those with no chart face across. On an
@@ -62,7 +63,7 @@ neuv_status chart_local_shape(const chart_local *L, chart_shape *s, int *vloop)
     s->euler = nv - edges + nf;
     s->genus = (s->components == 1 && !s->pinched) ? (2 - s->euler - s->loops) / 2 : -1;
     s->disk = s->components == 1 && !s->pinched && s->loops == 1 && s->euler == 1;
-    free(out); free(nxt);
+    mem_free(out); mem_free(nxt);
     return NEUV_OK;
 }
 
@@ -71,7 +72,7 @@ int chart_is_disk(const neuv_mesh *m, const int *face_chart, int id)
     int n = 0;
     for (int f = 0; f < m->nf; f++) n += face_chart[f] == id;
     if (n == 0) return 0;
-    int *faces = malloc(sizeof(int) * (size_t)n);
+    int *faces = mem_alloc(sizeof(int) * (size_t)n);
     face_graph g;
     chart_scratch s = {0};
     chart_local L = {0};
@@ -81,7 +82,7 @@ int chart_is_disk(const neuv_mesh *m, const int *face_chart, int id)
     n = 0;
     for (int f = 0; f < m->nf; f++)
         if (face_chart[f] == id) faces[n++] = f;
-    if (face_graph_build(m, &g) != NEUV_OK) { free(faces); return -1; }
+    if (face_graph_build(m, &g) != NEUV_OK) { mem_free(faces); return -1; }
     if (chart_scratch_init(&s, m->nf, m->nv) == NEUV_OK &&
         chart_local_build(m, &g, faces, n, &s, &L) == NEUV_OK &&
         chart_local_shape(&L, &shape, NULL) == NEUV_OK)
@@ -89,6 +90,6 @@ int chart_is_disk(const neuv_mesh *m, const int *face_chart, int id)
     chart_local_free(&L);
     chart_scratch_free(&s);
     face_graph_free(&g);
-    free(faces);
+    mem_free(faces);
     return result;
 }

@@ -9,6 +9,7 @@
 #include "charts/chart_steps.h"
 #include "charts/face_graph.h"
 #include "core/error.h"
+#include "core/mem.h"
 #include "core/union_find.h"
 #include "mesh/topology.h"
 
@@ -44,11 +45,11 @@ static neuv_status verify_charts(const neuv_mesh *m, const int *face_chart, int 
     for (int f = 0; f < m->nf; f++)
         if (face_chart[f] < 0 || face_chart[f] >= n_charts)
             return error_set(NEUV_ERR_INTERNAL, "face %d has no chart", f);
-    unsigned char *seen = calloc((size_t)(m->nv > 0 ? m->nv : 1), 1);
-    int *start = calloc((size_t)n_charts + 1, sizeof(int));
-    int *faces = malloc(sizeof(int) * (size_t)m->nf);
+    unsigned char *seen = mem_calloc((size_t)(m->nv > 0 ? m->nv : 1), 1);
+    int *start = mem_calloc((size_t)n_charts + 1, sizeof(int));
+    int *faces = mem_alloc(sizeof(int) * (size_t)m->nf);
     if (!seen || !start || !faces) {
-        free(seen); free(start); free(faces);
+        mem_free(seen); mem_free(start); mem_free(faces);
         return error_nomem("chart check");
     }
     /* Face lists per chart (counting sort), so the check stays linear. */
@@ -74,13 +75,13 @@ static neuv_status verify_charts(const neuv_mesh *m, const int *face_chart, int 
             }
             for (int i = ls[0]; i < ls[1]; i++) seen[lv[i]] = 0;
         }
-        free(ls); free(lv);
+        mem_free(ls); mem_free(lv);
         if (n == 0 || t.boundary_loops != 1 || loops != 1 || t.genus != 0 || t.euler != 1 || !simple)
             st = error_set(NEUV_ERR_INTERNAL,
                            "chart %d is not a disk (%d faces, %d loops, genus %d, euler %d, %s boundary)", c,
                            n, loops, t.genus, t.euler, simple ? "simple" : "pinched");
     }
-    free(seen); free(start); free(faces);
+    mem_free(seen); mem_free(start); mem_free(faces);
     return st;
 }
 
@@ -124,15 +125,19 @@ neuv_status charts_from_labels(const neuv_mesh *m, const int *face_label,
     if (o.smooth_sweeps > 0) {
         /* Smoothing is checked locally; should the global check still
          * reject its result, the unsmoothed charts (already disks) stand. */
-        int *before = malloc(sizeof(int) * (size_t)m->nf);
+        int *before = mem_alloc(sizeof(int) * (size_t)m->nf);
         if (!before) return error_nomem("chart smoothing");
         memcpy(before, face_chart, sizeof(int) * (size_t)m->nf);
         st = charts_smooth_boundaries(m, NULL, face_chart, o.smooth_sweeps, &rep.smoothed);
-        if (st == NEUV_OK && rep.smoothed > 0 && verify_charts(m, face_chart, n) != NEUV_OK) {
-            memcpy(face_chart, before, sizeof(int) * (size_t)m->nf);
-            rep.smoothed = 0;
+        if (st == NEUV_OK && rep.smoothed > 0) {
+            neuv_status v = verify_charts(m, face_chart, n);
+            if (v == NEUV_ERR_NOMEM) st = v;
+            else if (v != NEUV_OK) {
+                memcpy(face_chart, before, sizeof(int) * (size_t)m->nf);
+                rep.smoothed = 0;
+            }
         }
-        free(before);
+        mem_free(before);
         if (st != NEUV_OK) return st;
     }
     st = verify_charts(m, face_chart, n);

@@ -8,6 +8,7 @@
 #include "charts/chart_local.h"
 #include "charts/chart_steps.h"
 #include "core/error.h"
+#include "core/mem.h"
 
 /* Smooths the boundaries between the parts of a split (chart_id and the
  * ids from first_new on): the regions grown on the face graph meet along a
@@ -16,9 +17,9 @@
  * parts stand. */
 static neuv_status smooth_parts(const neuv_mesh *m, int *face_chart, int nc, int chart_id, int first_new)
 {
-    int *active = calloc((size_t)nc, sizeof(int));
-    int *before = malloc(sizeof(int) * (size_t)m->nf);
-    if (!active || !before) { free(active); free(before); return error_nomem("chart smoothing"); }
+    int *active = mem_calloc((size_t)nc, sizeof(int));
+    int *before = mem_alloc(sizeof(int) * (size_t)m->nf);
+    if (!active || !before) { mem_free(active); mem_free(before); return error_nomem("chart smoothing"); }
     active[chart_id] = 1;
     for (int c = first_new; c < nc; c++) active[c] = 1;
     memcpy(before, face_chart, sizeof(int) * (size_t)m->nf);
@@ -30,7 +31,7 @@ static neuv_status smooth_parts(const neuv_mesh *m, int *face_chart, int nc, int
         if (d < 0) st = error_nomem("chart smoothing");
         if (d == 0) { memcpy(face_chart, before, sizeof(int) * (size_t)m->nf); break; }
     }
-    free(active); free(before);
+    mem_free(active); mem_free(before);
     return st;
 }
 
@@ -48,9 +49,9 @@ neuv_status charts_split(const neuv_mesh *m, int *face_chart, int *n_charts, int
         n += face_chart[f] == chart_id;
     }
     if (n < 2) return error_set(NEUV_ERR_INPUT, "chart %d has %d face(s); splitting needs two", chart_id, n);
-    int *faces = malloc(sizeof(int) * (size_t)n);
-    int *part = malloc(sizeof(int) * (size_t)n);
-    int *comp = malloc(sizeof(int) * (size_t)n);
+    int *faces = mem_alloc(sizeof(int) * (size_t)n);
+    int *part = mem_alloc(sizeof(int) * (size_t)n);
+    int *comp = mem_alloc(sizeof(int) * (size_t)n);
     face_graph g = {0};
     chart_scratch s = {0};
     chart_local L = {0};
@@ -82,6 +83,6 @@ done:
     chart_local_free(&L);
     chart_scratch_free(&s);
     face_graph_free(&g);
-    free(faces); free(part); free(comp);
+    mem_free(faces); mem_free(part); mem_free(comp);
     return st;
 }

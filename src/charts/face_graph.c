@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 typedef struct half_edge_key { int lo, hi, he; } half_edge_key;
 
@@ -18,7 +19,7 @@ static int half_edge_cmp(const void *pa, const void *pb)
 
 void face_graph_free(face_graph *g)
 {
-    free(g->adj); free(g->elen); free(g->centroid); free(g->area);
+    mem_free(g->adj); mem_free(g->elen); mem_free(g->centroid); mem_free(g->area);
     memset(g, 0, sizeof *g);
 }
 
@@ -29,13 +30,13 @@ neuv_status face_graph_build(const neuv_mesh *m, face_graph *g)
     size_t n3 = (size_t)(nf > 0 ? nf : 1) * 3;
     g->nf = nf;
     g->nv = m->nv;
-    g->adj = malloc(sizeof(int) * n3);
-    g->elen = malloc(sizeof(double) * n3);
-    g->centroid = malloc(sizeof(double) * n3);
-    g->area = malloc(sizeof(double) * (n3 / 3));
-    half_edge_key *keys = malloc(sizeof *keys * n3);
+    g->adj = mem_alloc(sizeof(int) * n3);
+    g->elen = mem_alloc(sizeof(double) * n3);
+    g->centroid = mem_alloc(sizeof(double) * n3);
+    g->area = mem_alloc(sizeof(double) * (n3 / 3));
+    half_edge_key *keys = mem_alloc(sizeof *keys * n3);
     if (!g->adj || !g->elen || !g->centroid || !g->area || !keys) {
-        free(keys);
+        mem_free(keys);
         face_graph_free(g);
         return error_nomem("face graph");
     }
@@ -70,6 +71,6 @@ neuv_status face_graph_build(const neuv_mesh *m, face_graph *g)
         }
         i = j;
     }
-    free(keys);
+    mem_free(keys);
     return NEUV_OK;
 }

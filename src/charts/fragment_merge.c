@@ -8,6 +8,7 @@
 
 #include "charts/min_heap.h"
 #include "core/error.h"
+#include "core/mem.h"
 
 typedef struct neighbour_list {
     int *id;
@@ -37,10 +38,10 @@ static int add_length(neighbour_list *l, int id, double len)
     if (i >= 0) { l->len[i] += len; return 0; }
     if (l->n == l->cap) {
         int cap = l->cap ? 2 * l->cap : 4;
-        int *ids = realloc(l->id, sizeof(int) * (size_t)cap);
+        int *ids = mem_realloc(l->id, sizeof(int) * (size_t)cap);
         if (!ids) return -1;
         l->id = ids;
-        double *lens = realloc(l->len, sizeof(double) * (size_t)cap);
+        double *lens = mem_realloc(l->len, sizeof(double) * (size_t)cap);
         if (!lens) return -1;
         l->len = lens;
         l->cap = cap;
@@ -69,7 +70,7 @@ static int build_neighbours(const face_graph *g, const int *piece, neighbour_lis
             int o = g->adj[3 * f + k];
             if (o > f && piece[o] != piece[f]) count++;
         }
-    piece_pair *pairs = malloc(sizeof *pairs * (count > 0 ? count : 1));
+    piece_pair *pairs = mem_alloc(sizeof *pairs * (count > 0 ? count : 1));
     if (!pairs) return -1;
     count = 0;
     for (int f = 0; f < g->nf; f++)
@@ -87,12 +88,12 @@ static int build_neighbours(const face_graph *g, const int *piece, neighbour_lis
         while (j < count && pairs[j].a == pairs[i].a && pairs[j].b == pairs[i].b) len += pairs[j++].len;
         if (add_length(&nb[pairs[i].a], pairs[i].b, len) != 0 ||
             add_length(&nb[pairs[i].b], pairs[i].a, len) != 0) {
-            free(pairs);
+            mem_free(pairs);
             return -1;
         }
         i = j;
     }
-    free(pairs);
+    mem_free(pairs);
     return 0;
 }
 
@@ -107,7 +108,7 @@ static int absorb(neighbour_list *nb, int a, int b)
         remove_entry(&nb[n], a);
     }
     remove_entry(&nb[b], a);
-    free(nb[a].id); free(nb[a].len);
+    mem_free(nb[a].id); mem_free(nb[a].len);
     nb[a] = (neighbour_list){0};
     return 0;
 }
@@ -118,9 +119,9 @@ neuv_status charts_merge_fragments(const neuv_mesh *m, const face_graph *g, int 
     int np = *n_pieces;
     size_t np1 = (size_t)(np > 0 ? np : 1);
     *merged = 0;
-    double *area = calloc(np1, sizeof(double));
-    int *into = malloc(sizeof(int) * np1);
-    neighbour_list *nb = calloc(np1, sizeof *nb);
+    double *area = mem_calloc(np1, sizeof(double));
+    int *into = mem_alloc(sizeof(int) * np1);
+    neighbour_list *nb = mem_calloc(np1, sizeof *nb);
     min_heap h = {0};
     neuv_status st = NEUV_OK;
     if (!area || !into || !nb || min_heap_init(&h, np) != 0 || build_neighbours(g, piece, nb) != 0) {
@@ -168,8 +169,8 @@ neuv_status charts_merge_fragments(const neuv_mesh *m, const face_graph *g, int 
     else *n_pieces = n;
 done:
     if (nb)
-        for (int p = 0; p < np; p++) { free(nb[p].id); free(nb[p].len); }
-    free(nb); free(area); free(into);
+        for (int p = 0; p < np; p++) { mem_free(nb[p].id); mem_free(nb[p].len); }
+    mem_free(nb); mem_free(area); mem_free(into);
     min_heap_free(&h);
     return st;
 }

@@ -2,6 +2,8 @@
 
 #include <stdlib.h>
 
+#include "core/mem.h"
+
 static int before(const min_heap *h, int i, int j)
 {
     if (h->key[i] != h->key[j]) return h->key[i] < h->key[j];
@@ -18,15 +20,15 @@ int min_heap_init(min_heap *h, int cap)
 {
     h->n = 0;
     h->cap = cap > 16 ? cap : 16;
-    h->key = malloc(sizeof(double) * (size_t)h->cap);
-    h->id = malloc(sizeof(int) * (size_t)h->cap);
+    h->key = mem_alloc(sizeof(double) * (size_t)h->cap);
+    h->id = mem_alloc(sizeof(int) * (size_t)h->cap);
     if (!h->key || !h->id) { min_heap_free(h); return -1; }
     return 0;
 }
 
 void min_heap_free(min_heap *h)
 {
-    free(h->key); free(h->id);
+    mem_free(h->key); mem_free(h->id);
     h->key = NULL; h->id = NULL;
     h->n = h->cap = 0;
 }
@@ -35,10 +37,10 @@ int min_heap_push(min_heap *h, double key, int id)
 {
     if (h->n == h->cap) {
         int cap = h->cap * 2;
-        double *k = realloc(h->key, sizeof(double) * (size_t)cap);
+        double *k = mem_realloc(h->key, sizeof(double) * (size_t)cap);
         if (!k) return -1;
         h->key = k;
-        int *d = realloc(h->id, sizeof(int) * (size_t)cap);
+        int *d = mem_realloc(h->id, sizeof(int) * (size_t)cap);
         if (!d) return -1;
         h->id = d;
         h->cap = cap;

@@ -11,6 +11,7 @@
 
 #include "charts/min_heap.h"
 #include "core/error.h"
+#include "core/mem.h"
 
 static double centroid_distance(const chart_local *L, int a, int b)
 {
@@ -65,7 +66,7 @@ static int farthest_face(const chart_local *L, const double *dist)
 
 neuv_status chart_local_grow2(const chart_local *L, int *part)
 {
-    double *dist = malloc(sizeof(double) * (size_t)(L->nf > 0 ? L->nf : 1));
+    double *dist = mem_alloc(sizeof(double) * (size_t)(L->nf > 0 ? L->nf : 1));
     if (!dist) return error_nomem("region split");
     int seed[2] = {0, 0};
     neuv_status st = chart_local_face_dijkstra(L, seed, NULL, 1, NULL, dist, NULL);
@@ -85,6 +86,6 @@ neuv_status chart_local_grow2(const chart_local *L, int *part)
     if (st == NEUV_OK)
         for (int i = 0; i < L->nf; i++)
             if (part[i] < 0) part[i] = 0;
-    free(dist);
+    mem_free(dist);
     return st;
 }

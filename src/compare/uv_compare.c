@@ -7,6 +7,7 @@
 #include "atlas/uv_charts.h"
 #include "charts/charts.h"
 #include "core/error.h"
+#include "core/mem.h"
 #include "mesh/edge_map.h"
 #include "spatial/bvh.h"
 #include "spatial/triangle_closest_point.h"
@@ -74,10 +75,10 @@ static neuv_status across_seam_distances(const neuv_mesh *a, const int *chart_a,
                                          const int *wu, double *dist)
 {
     neuv_status st = NEUV_OK;
-    int *idx = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
-    double *q = malloc(sizeof(double) * 3 * (size_t)(n > 0 ? n : 1));
-    int *face = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
-    if (!idx || !q || !face) { free(idx); free(q); free(face); return error_nomem("UV comparison"); }
+    int *idx = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    double *q = mem_alloc(sizeof(double) * 3 * (size_t)(n > 0 ? n : 1));
+    int *face = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    if (!idx || !q || !face) { mem_free(idx); mem_free(q); mem_free(face); return error_nomem("UV comparison"); }
     for (int c = 0; c < n_charts_a && st == NEUV_OK; c++) {
         int k = 0;
         for (int w = 0; w < n; w++)
@@ -102,9 +103,9 @@ static neuv_status across_seam_distances(const neuv_mesh *a, const int *chart_a,
             }
         }
         bvh_free(&tree);
-        mesh_free(sub); free(vmap); free(fmap);
+        mesh_free(sub); mem_free(vmap); mem_free(fmap);
     }
-    free(idx); free(q); free(face);
+    mem_free(idx); mem_free(q); mem_free(face);
     return st;
 }
 
@@ -135,12 +136,12 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     edge_map wedges, pairs;
     int wedges_ok = edge_map_init(&wedges, ncb) == 0;
     int pairs_ok = edge_map_init(&pairs, (size_t)b->nf / 4 + 16) == 0;
-    int *wv = malloc(sizeof(int) * ncb), *wu = malloc(sizeof(int) * ncb), *wchart = malloc(sizeof(int) * ncb);
-    int *vf_start = calloc((size_t)a->nv + 1, sizeof(int)), *vf = malloc(sizeof(int) * 3 * (size_t)a->nf);
-    int *chart_a = malloc(sizeof(int) * (size_t)a->nf), *chart_b = malloc(sizeof(int) * (size_t)b->nf);
-    double *pts = malloc(sizeof(double) * 3 * (ncb > (size_t)b->nf ? ncb : (size_t)b->nf));
-    double *bary = malloc(sizeof(double) * 3 * ncb), *d2 = malloc(sizeof(double) * ncb), *dist = NULL, *dist_any = NULL;
-    int *face = malloc(sizeof(int) * ncb);
+    int *wv = mem_alloc(sizeof(int) * ncb), *wu = mem_alloc(sizeof(int) * ncb), *wchart = mem_alloc(sizeof(int) * ncb);
+    int *vf_start = mem_calloc((size_t)a->nv + 1, sizeof(int)), *vf = mem_alloc(sizeof(int) * 3 * (size_t)a->nf);
+    int *chart_a = mem_alloc(sizeof(int) * (size_t)a->nf), *chart_b = mem_alloc(sizeof(int) * (size_t)b->nf);
+    double *pts = mem_alloc(sizeof(double) * 3 * (ncb > (size_t)b->nf ? ncb : (size_t)b->nf));
+    double *bary = mem_alloc(sizeof(double) * 3 * ncb), *d2 = mem_alloc(sizeof(double) * ncb), *dist = NULL, *dist_any = NULL;
+    int *face = mem_alloc(sizeof(int) * ncb);
     double *pair_area = NULL, *best_area = NULL;
     int *best_a = NULL;
     if (!wedges_ok || !pairs_ok || !wv || !wu || !wchart || !vf_start || !vf || !chart_a || !chart_b || !pts || !bary ||
@@ -164,9 +165,9 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     }
     bvh_closest_points(&tree, b->nf, pts, face, NULL, NULL);
     /* Area of B chart cb under A chart ca, one slot per pair met. */
-    pair_area = malloc(sizeof(double) * (size_t)b->nf);
-    best_area = calloc((size_t)ncbch, sizeof(double));
-    best_a = malloc(sizeof(int) * (size_t)ncbch);
+    pair_area = mem_alloc(sizeof(double) * (size_t)b->nf);
+    best_area = mem_calloc((size_t)ncbch, sizeof(double));
+    best_a = mem_alloc(sizeof(int) * (size_t)ncbch);
     if (!pair_area || !best_area || !best_a) goto nomem;
     int npairs = 0;
     double total = 0;
@@ -205,8 +206,8 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     }
     for (int w = 0; w < nw; w++) memcpy(pts + 3 * (size_t)w, b->pos + 3 * (size_t)wv[w], sizeof(double) * 3);
     bvh_closest_points(&tree, nw, pts, face, bary, d2);
-    dist = malloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
-    dist_any = malloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
+    dist = mem_alloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
+    dist_any = mem_alloc(sizeof(double) * (size_t)(nw > 0 ? nw : 1));
     if (!dist || !dist_any) goto nomem;
 #pragma omp parallel for schedule(dynamic, 256)
     for (int w = 0; w < nw; w++) {
@@ -222,9 +223,9 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
      * for the chart of the first face using it (wv is not needed any more
      * and marks the corners counted). */
     {
-        double *sum = calloc((size_t)ncbch, sizeof(double));
-        int *cnt = calloc((size_t)ncbch, sizeof(int));
-        if (!sum || !cnt) { free(sum); free(cnt); goto nomem; }
+        double *sum = mem_calloc((size_t)ncbch, sizeof(double));
+        int *cnt = mem_calloc((size_t)ncbch, sizeof(int));
+        if (!sum || !cnt) { mem_free(sum); mem_free(cnt); goto nomem; }
         for (int f = 0; f < b->nf; f++)
             for (int k = 0; k < 3; k++) {
                 int w = edge_map_get(&wedges, b->tri[3 * f + k], b->tri_uv[3 * f + k]);
@@ -248,7 +249,7 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
                     break;
                 }
         }
-        free(sum); free(cnt);
+        mem_free(sum); mem_free(cnt);
     }
     res->vertices_compared = nw;
     res->across_seam = (double)across / nw;
@@ -260,8 +261,8 @@ nomem:
 done:
     if (wedges_ok) edge_map_free(&wedges);
     if (pairs_ok) edge_map_free(&pairs);
-    free(wv); free(wu); free(wchart); free(vf_start); free(vf); free(chart_a); free(chart_b); free(pts);
-    free(bary); free(d2); free(dist); free(dist_any); free(face); free(pair_area); free(best_area); free(best_a);
+    mem_free(wv); mem_free(wu); mem_free(wchart); mem_free(vf_start); mem_free(vf); mem_free(chart_a); mem_free(chart_b); mem_free(pts);
+    mem_free(bary); mem_free(d2); mem_free(dist); mem_free(dist_any); mem_free(face); mem_free(pair_area); mem_free(best_area); mem_free(best_a);
     bvh_free(&tree);
     return st;
 }

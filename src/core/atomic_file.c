@@ -8,14 +8,15 @@
 #include <fcntl.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 static char *dir_of(const char *path)
 {
     const char *slash = strrchr(path, '/');
-    if (!slash) return strdup(".");
-    if (slash == path) return strdup("/");
+    if (!slash) return mem_strdup(".");
+    if (slash == path) return mem_strdup("/");
     size_t n = (size_t)(slash - path);
-    char *d = malloc(n + 1);
+    char *d = mem_alloc(n + 1);
     if (!d) return NULL;
     memcpy(d, path, n);
     d[n] = '\0';
@@ -32,19 +33,19 @@ neuv_status atomic_file_open(atomic_file *af, const char *target)
     if (!dir) return error_nomem("a path");
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
         neuv_status s = error_set(NEUV_ERR_IO, "folder %s does not exist", dir);
-        free(dir);
+        mem_free(dir);
         return s;
     }
-    free(dir);
+    mem_free(dir);
     size_t n = strlen(target) + 32;
-    af->tmp_path = malloc(n);
-    af->target = strdup(target);
+    af->tmp_path = mem_alloc(n);
+    af->target = mem_strdup(target);
     if (!af->tmp_path || !af->target) { atomic_file_abort(af); return error_nomem("a path"); }
     snprintf(af->tmp_path, n, "%s.tmp-XXXXXX", target);
     int fd = mkstemp(af->tmp_path);
     if (fd < 0) {
         neuv_status s = error_set(NEUV_ERR_IO, "cannot create file: %s", strerror(errno));
-        free(af->tmp_path); af->tmp_path = NULL;
+        mem_free(af->tmp_path); af->tmp_path = NULL;
         atomic_file_abort(af);
         return s;
     }
@@ -70,14 +71,14 @@ neuv_status atomic_file_commit(atomic_file *af)
         atomic_file_abort(af);
         return s;
     }
-    free(af->tmp_path); af->tmp_path = NULL;
-    free(af->target); af->target = NULL;
+    mem_free(af->tmp_path); af->tmp_path = NULL;
+    mem_free(af->target); af->target = NULL;
     return NEUV_OK;
 }
 
 void atomic_file_abort(atomic_file *af)
 {
     if (af->fp) { fclose(af->fp); af->fp = NULL; }
-    if (af->tmp_path) { unlink(af->tmp_path); free(af->tmp_path); af->tmp_path = NULL; }
-    free(af->target); af->target = NULL;
+    if (af->tmp_path) { unlink(af->tmp_path); mem_free(af->tmp_path); af->tmp_path = NULL; }
+    mem_free(af->target); af->target = NULL;
 }

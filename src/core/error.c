@@ -4,6 +4,7 @@
 #include <stdio.h>
 
 static _Thread_local char last_error[512];
+static _Thread_local neuv_status last_status;
 
 neuv_status error_set(neuv_status code, const char *fmt, ...)
 {
@@ -11,6 +12,7 @@ neuv_status error_set(neuv_status code, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(last_error, sizeof last_error, fmt, ap);
     va_end(ap);
+    last_status = code;
     return code;
 }
 
@@ -24,7 +26,9 @@ neuv_status error_cancelled(void)
     return error_set(NEUV_ERR_CANCELLED, "cancelled: the progress callback returned 0");
 }
 
-void error_clear(void) { last_error[0] = '\0'; }
+neuv_status error_last(void) { return last_status != NEUV_OK ? last_status : NEUV_ERR_INTERNAL; }
+
+void error_clear(void) { last_error[0] = '\0'; last_status = NEUV_OK; }
 
 const char *neuv_last_error(void) { return last_error; }
 

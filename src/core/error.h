@@ -13,6 +13,10 @@ neuv_status error_nomem(const char *what);
 /* NEUV_ERR_CANCELLED with its message, for a stage that stops because the
  * progress callback asked it to (core/log.h log_cancelled). */
 neuv_status error_cancelled(void);
+/* The status of the last error_set on this thread (NEUV_ERR_INTERNAL when
+ * none), for a caller of a function that reports failure by returning NULL
+ * or -1 after error_set: `if (!p) return error_last();`. */
+neuv_status error_last(void);
 void error_clear(void);
 
 #endif

@@ -5,11 +5,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/mem.h"
+
 void json_init(json_writer *w) { memset(w, 0, sizeof *w); }
 
 void json_free(json_writer *w)
 {
-    free(w->buf);
+    mem_free(w->buf);
     memset(w, 0, sizeof *w);
 }
 
@@ -21,7 +23,7 @@ static void append(json_writer *w, const char *s, size_t n)
     if (w->len + n + 1 > w->cap) {
         size_t cap = w->cap ? w->cap : 256;
         while (cap < w->len + n + 1) cap *= 2;
-        char *nb = realloc(w->buf, cap);
+        char *nb = mem_realloc(w->buf, cap);
         if (!nb) { w->failed = 1; return; }
         w->buf = nb;
         w->cap = cap;

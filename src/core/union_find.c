@@ -2,11 +2,13 @@
 
 #include <stdlib.h>
 
+#include "core/mem.h"
+
 int uf_init(union_find *u, int n)
 {
     u->n = n;
-    u->parent = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
-    u->size = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    u->parent = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    u->size = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
     if (!u->parent || !u->size) { uf_free(u); return -1; }
     for (int i = 0; i < n; i++) { u->parent[i] = i; u->size[i] = 1; }
     return 0;
@@ -14,7 +16,7 @@ int uf_init(union_find *u, int n)
 
 void uf_free(union_find *u)
 {
-    free(u->parent); free(u->size);
+    mem_free(u->parent); mem_free(u->size);
     u->parent = u->size = NULL;
     u->n = 0;
 }
@@ -40,7 +42,7 @@ void uf_union(union_find *u, int a, int b)
 
 int uf_labels(union_find *u, int *label)
 {
-    int *root_label = malloc(sizeof(int) * (size_t)(u->n > 0 ? u->n : 1));
+    int *root_label = mem_alloc(sizeof(int) * (size_t)(u->n > 0 ? u->n : 1));
     if (!root_label) return -1;
     for (int i = 0; i < u->n; i++) root_label[i] = -1;
     int count = 0;
@@ -49,6 +51,6 @@ int uf_labels(union_find *u, int *label)
         if (root_label[r] < 0) root_label[r] = count++;
         label[i] = root_label[r];
     }
-    free(root_label);
+    mem_free(root_label);
     return count;
 }

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "mesh/topology.h"
 
 neuv_status flatten_require_disk(const neuv_mesh *m, int **boundary, int *nboundary)
@@ -11,10 +12,10 @@ neuv_status flatten_require_disk(const neuv_mesh *m, int **boundary, int *nbound
     if (boundary) *boundary = NULL;
     if (nboundary) *nboundary = 0;
     if (!m || m->nf <= 0) return error_set(NEUV_ERR_INPUT, "not a disk: the mesh has no faces");
-    int *comp = malloc(sizeof(int) * (size_t)m->nf);
+    int *comp = mem_alloc(sizeof(int) * (size_t)m->nf);
     if (!comp) return error_nomem("face components");
     int ncomp = mesh_face_components(m, comp);
-    free(comp);
+    mem_free(comp);
     if (ncomp < 0) return error_nomem("face components");
     component_topology t;
     neuv_status s = mesh_subset_topology(m, NULL, 0, &t);
@@ -33,7 +34,7 @@ neuv_status flatten_require_disk(const neuv_mesh *m, int **boundary, int *nbound
     if (nloops < 0) return error_nomem("boundary loops");
     if (nloops != 1 || start[1] - start[0] < 3) {
         int len = nloops >= 1 ? start[1] - start[0] : 0;
-        free(start); free(verts);
+        mem_free(start); mem_free(verts);
         return error_set(NEUV_ERR_INPUT, "not a disk: boundary found as %d loop%s (first of %d vertices)",
                          nloops, nloops == 1 ? "" : "s", len);
     }
@@ -41,7 +42,7 @@ neuv_status flatten_require_disk(const neuv_mesh *m, int **boundary, int *nbound
     for (int k = 0; k < len; k++) verts[k] = verts[start[0] + k];
     if (nboundary) *nboundary = len;
     if (boundary) *boundary = verts;
-    else free(verts);
-    free(start);
+    else mem_free(verts);
+    mem_free(start);
     return NEUV_OK;
 }

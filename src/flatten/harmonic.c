@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "flatten/disk_topology.h"
 #include "flatten/uv_orient.h"
 #include "geometry/cholesky.h"
@@ -21,9 +22,9 @@ neuv_status harmonic(const neuv_mesh *m, double *uv)
     neuv_status s = flatten_require_disk(m, &boundary, &nb);
     if (s) return s;
     const int nv = m->nv;
-    int *index = malloc(sizeof(int) * (size_t)nv); /* interior unknown, or -1 */
-    unsigned char *fixed = calloc((size_t)nv, 1);
-    double *seg = malloc(sizeof(double) * (size_t)nb);
+    int *index = mem_alloc(sizeof(int) * (size_t)nv); /* interior unknown, or -1 */
+    unsigned char *fixed = mem_calloc((size_t)nv, 1);
+    double *seg = mem_alloc(sizeof(double) * (size_t)nb);
     double *rhs = NULL, *x = NULL;
     sparse_matrix lap = {0}, lii = {0};
     triplet_list t = {0};
@@ -51,17 +52,17 @@ neuv_status harmonic(const neuv_mesh *m, double *uv)
     for (int v = 0; v < nv; v++) index[v] = -1;
     int n = 0;
     {
-        unsigned char *referenced = calloc((size_t)nv, 1);
+        unsigned char *referenced = mem_calloc((size_t)nv, 1);
         if (!referenced) { s = error_nomem("harmonic map"); goto done; }
         for (int i = 0; i < 3 * m->nf; i++) referenced[m->tri[i]] = 1;
         for (int v = 0; v < nv; v++)
             if (referenced[v] && !fixed[v]) index[v] = n++;
-        free(referenced);
+        mem_free(referenced);
     }
     if ((s = cotan_laplacian(m, &lap))) goto done;
     if (n > 0) {
-        rhs = calloc(2 * (size_t)n, sizeof(double));
-        x = malloc(sizeof(double) * 2 * (size_t)n);
+        rhs = mem_calloc(2 * (size_t)n, sizeof(double));
+        x = mem_alloc(sizeof(double) * 2 * (size_t)n);
         if (!rhs || !x) { s = error_nomem("harmonic map"); goto done; }
         if ((s = triplets_init(&t, n, n, sparse_nnz(&lap)))) goto done;
         for (int r = 0; r < nv && !s; r++) {
@@ -95,6 +96,6 @@ done:
     sparse_free(&lii);
     sparse_free(&lap);
     triplets_free(&t);
-    free(boundary); free(index); free(fixed); free(seg); free(rhs); free(x);
+    mem_free(boundary); mem_free(index); mem_free(fixed); mem_free(seg); mem_free(rhs); mem_free(x);
     return s;
 }

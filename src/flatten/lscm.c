@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "flatten/disk_topology.h"
 #include "flatten/uv_orient.h"
 #include "geometry/cholesky.h"
@@ -63,8 +64,8 @@ static neuv_status lscm_solve(const neuv_mesh *m, const int *pin, double pin_uv[
 
     /* Unknown index of (vertex v, coordinate c) at dof[2v + c]: -1 for the
      * pins and for vertices no face uses. */
-    int *dof = malloc(sizeof(int) * 2 * (size_t)nv);
-    unsigned char *used = calloc((size_t)nv, 1);
+    int *dof = mem_alloc(sizeof(int) * 2 * (size_t)nv);
+    unsigned char *used = mem_calloc((size_t)nv, 1);
     double *rhs = NULL, *x = NULL;
     triplet_list t = {0};
     sparse_matrix k = {0};
@@ -77,8 +78,8 @@ static neuv_status lscm_solve(const neuv_mesh *m, const int *pin, double pin_uv[
         dof[2 * v] = used[v] ? n++ : -1;
         dof[2 * v + 1] = used[v] ? n++ : -1;
     }
-    rhs = calloc((size_t)(n > 0 ? n : 1), sizeof(double));
-    x = malloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
+    rhs = mem_calloc((size_t)(n > 0 ? n : 1), sizeof(double));
+    x = mem_alloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
     if (!rhs || !x) { s = error_nomem("LSCM system"); goto done; }
     if ((s = triplets_init(&t, n, n, (size_t)m->nf * 72 + (size_t)n))) goto done;
 
@@ -164,7 +165,7 @@ done:
     cholesky_free(chol);
     sparse_free(&k);
     triplets_free(&t);
-    free(dof); free(used); free(rhs); free(x);
+    mem_free(dof); mem_free(used); mem_free(rhs); mem_free(x);
     return s;
 }
 
@@ -175,7 +176,7 @@ neuv_status lscm(const neuv_mesh *m, double *uv)
     if (s) return s;
     int pin[2];
     farthest_pair(m, boundary, nb, &pin[0], &pin[1]);
-    free(boundary);
+    mem_free(boundary);
     double pin_uv[2][2] = {{0, 0}, {sqrt(dist2(m->pos + 3 * pin[0], m->pos + 3 * pin[1])), 0}};
     return lscm_solve(m, pin, pin_uv, NULL, 0, uv);
 }

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 #include "losses/param_losses.h"
 #include "nn/adam.h"
@@ -47,10 +48,10 @@ typedef struct refine_data {
 
 static void refine_data_free(refine_data *d)
 {
-    free(d->tri); free(d->fmesh); free(d->fchart); free(d->ei); free(d->ej); free(d->elen);
+    mem_free(d->tri); mem_free(d->fmesh); mem_free(d->fchart); mem_free(d->ei); mem_free(d->ej); mem_free(d->elen);
     param_corners_free(&d->corners);
-    free(d->cos3d); free(d->area3d); free(d->frame_inv); free(d->weight); free(d->orient); free(d->uv0); free(d->scale); free(d->vfirst); free(d->ffirst); free(d->vbound);
-    free(d->bi); free(d->bj); free(d->bfirst);
+    mem_free(d->cos3d); mem_free(d->area3d); mem_free(d->frame_inv); mem_free(d->weight); mem_free(d->orient); mem_free(d->uv0); mem_free(d->scale); mem_free(d->vfirst); mem_free(d->ffirst); mem_free(d->vbound);
+    mem_free(d->bi); mem_free(d->bj); mem_free(d->bfirst);
     memset(d, 0, sizeof *d);
 }
 
@@ -71,12 +72,12 @@ static int cmp_edge_key(const void *a, const void *b)
  * and a key never joins two charts. */
 static neuv_status mark_boundary(refine_data *d, int n_charts)
 {
-    unsigned long long *key = malloc(sizeof *key * (size_t)(d->ne > 0 ? d->ne : 1));
-    d->vbound = calloc((size_t)(d->nv > 0 ? d->nv : 1), 1);
-    d->bi = malloc(sizeof(int) * (size_t)(d->ne > 0 ? d->ne : 1));
-    d->bj = malloc(sizeof(int) * (size_t)(d->ne > 0 ? d->ne : 1));
-    d->bfirst = calloc((size_t)n_charts + 1, sizeof(int));
-    if (!key || !d->vbound || !d->bi || !d->bj || !d->bfirst) { free(key); return error_nomem("UV refinement"); }
+    unsigned long long *key = mem_alloc(sizeof *key * (size_t)(d->ne > 0 ? d->ne : 1));
+    d->vbound = mem_calloc((size_t)(d->nv > 0 ? d->nv : 1), 1);
+    d->bi = mem_alloc(sizeof(int) * (size_t)(d->ne > 0 ? d->ne : 1));
+    d->bj = mem_alloc(sizeof(int) * (size_t)(d->ne > 0 ? d->ne : 1));
+    d->bfirst = mem_calloc((size_t)n_charts + 1, sizeof(int));
+    if (!key || !d->vbound || !d->bi || !d->bj || !d->bfirst) { mem_free(key); return error_nomem("UV refinement"); }
     for (int e = 0; e < d->ne; e++) {
         unsigned long long a = (unsigned)d->ei[e], b = (unsigned)d->ej[e];
         key[e] = a < b ? a << 32 | b : b << 32 | a;
@@ -98,7 +99,7 @@ static neuv_status mark_boundary(refine_data *d, int n_charts)
         e += n;
     }
     while (c < n_charts) d->bfirst[++c] = d->nb;
-    free(key);
+    mem_free(key);
     return NEUV_OK;
 }
 
@@ -109,24 +110,24 @@ static neuv_status refine_data_build(const neuv_mesh *m, const int *face_chart, 
     int nf = m->nf;
     d->nf = nf;
     d->ne = 3 * nf;
-    int *order = malloc(sizeof(int) * (size_t)nf), *first = calloc((size_t)n_charts + 1, sizeof(int));
-    int *stamp = malloc(sizeof(int) * (size_t)m->nv), *local = malloc(sizeof(int) * (size_t)m->nv);
-    double *pos = malloc(sizeof(double) * 3 * 3 * (size_t)nf);   /* chart-vertex positions, at most 3 nf */
-    double *edge_sum = calloc((size_t)n_charts, sizeof(double));
-    d->tri = malloc(sizeof(int) * 3 * (size_t)nf);
-    d->fmesh = malloc(sizeof(int) * (size_t)nf);
-    d->fchart = malloc(sizeof(int) * (size_t)nf);
-    d->ei = malloc(sizeof(int) * (size_t)d->ne);
-    d->ej = malloc(sizeof(int) * (size_t)d->ne);
-    d->elen = malloc(sizeof(float) * (size_t)d->ne);
-    d->cos3d = malloc(sizeof(float) * 3 * (size_t)nf);
-    d->area3d = malloc(sizeof(float) * (size_t)nf);
-    d->frame_inv = malloc(sizeof(float) * 4 * (size_t)nf);
-    d->weight = malloc(sizeof(float) * (size_t)nf);
-    d->orient = malloc(sizeof(float) * (size_t)nf);
-    d->uv0 = malloc(sizeof(float) * 2 * 3 * (size_t)nf);
-    d->scale = malloc(sizeof(double) * (size_t)n_charts);
-    d->vfirst = malloc(sizeof(int) * ((size_t)n_charts + 1));
+    int *order = mem_alloc(sizeof(int) * (size_t)nf), *first = mem_calloc((size_t)n_charts + 1, sizeof(int));
+    int *stamp = mem_alloc(sizeof(int) * (size_t)m->nv), *local = mem_alloc(sizeof(int) * (size_t)m->nv);
+    double *pos = mem_alloc(sizeof(double) * 3 * 3 * (size_t)nf);   /* chart-vertex positions, at most 3 nf */
+    double *edge_sum = mem_calloc((size_t)n_charts, sizeof(double));
+    d->tri = mem_alloc(sizeof(int) * 3 * (size_t)nf);
+    d->fmesh = mem_alloc(sizeof(int) * (size_t)nf);
+    d->fchart = mem_alloc(sizeof(int) * (size_t)nf);
+    d->ei = mem_alloc(sizeof(int) * (size_t)d->ne);
+    d->ej = mem_alloc(sizeof(int) * (size_t)d->ne);
+    d->elen = mem_alloc(sizeof(float) * (size_t)d->ne);
+    d->cos3d = mem_alloc(sizeof(float) * 3 * (size_t)nf);
+    d->area3d = mem_alloc(sizeof(float) * (size_t)nf);
+    d->frame_inv = mem_alloc(sizeof(float) * 4 * (size_t)nf);
+    d->weight = mem_alloc(sizeof(float) * (size_t)nf);
+    d->orient = mem_alloc(sizeof(float) * (size_t)nf);
+    d->uv0 = mem_alloc(sizeof(float) * 2 * 3 * (size_t)nf);
+    d->scale = mem_alloc(sizeof(double) * (size_t)n_charts);
+    d->vfirst = mem_alloc(sizeof(int) * ((size_t)n_charts + 1));
     neuv_status s = NEUV_OK;
     if (!order || !first || !stamp || !local || !pos || !edge_sum || !d->tri || !d->fmesh || !d->fchart ||
         !d->ei || !d->ej || !d->elen || !d->cos3d || !d->area3d || !d->frame_inv || !d->weight || !d->orient || !d->uv0 || !d->scale || !d->vfirst) {
@@ -137,11 +138,11 @@ static neuv_status refine_data_build(const neuv_mesh *m, const int *face_chart, 
     for (int f = 0; f < nf; f++) first[face_chart[f] + 1]++;
     for (int c = 0; c < n_charts; c++) first[c + 1] += first[c];
     {
-        int *fill = malloc(sizeof(int) * (size_t)n_charts);
+        int *fill = mem_alloc(sizeof(int) * (size_t)n_charts);
         if (!fill) { s = error_nomem("UV refinement"); goto done; }
         memcpy(fill, first, sizeof(int) * (size_t)n_charts);
         for (int f = 0; f < nf; f++) order[fill[face_chart[f]]++] = f;
-        free(fill);
+        mem_free(fill);
     }
     for (int v = 0; v < m->nv; v++) stamp[v] = -1;
     int nv = 0;
@@ -181,7 +182,7 @@ static neuv_status refine_data_build(const neuv_mesh *m, const int *face_chart, 
     }
     /* Scale positions and UVs per chart vertex (every vertex's chart is its faces' chart). */
     {
-        int *vchart = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+        int *vchart = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
         if (!vchart) { s = error_nomem("UV refinement"); goto done; }
         for (int k = 0; k < nf; k++)
             for (int q = 0; q < 3; q++) vchart[d->tri[3 * k + q]] = d->fchart[k];
@@ -191,7 +192,7 @@ static neuv_status refine_data_build(const neuv_mesh *m, const int *face_chart, 
             d->uv0[2 * i] = (float)(d->uv0[2 * i] * sc);
             d->uv0[2 * i + 1] = (float)(d->uv0[2 * i + 1] * sc);
         }
-        free(vchart);
+        mem_free(vchart);
     }
     for (int e = 0; e < d->ne; e++)
         d->elen[e] = (float)dist3(pos + 3 * (size_t)d->ei[e], pos + 3 * (size_t)d->ej[e]);
@@ -204,7 +205,7 @@ static neuv_status refine_data_build(const neuv_mesh *m, const int *face_chart, 
     for (int f = 0; f < nf; f++)
         if (d->area3d[f] < 1e-6f) d->area3d[f] = 1e-6f;
 done:
-    free(order); free(first); free(stamp); free(local); free(pos); free(edge_sum);
+    mem_free(order); mem_free(first); mem_free(stamp); mem_free(local); mem_free(pos); mem_free(edge_sum);
     if (s != NEUV_OK) refine_data_free(d);
     return s;
 }
@@ -371,11 +372,11 @@ neuv_status uv_refine(const neuv_mesh *m, const int *face_chart, int n_charts, c
     nn_params_init(&params);
     nn_adam adam = {0};
     nn_ctx *ctx = NULL;
-    double *sum = malloc(sizeof(double) * (size_t)n_charts);
-    int *bad0 = malloc(sizeof(int) * (size_t)n_charts), *bad1 = malloc(sizeof(int) * (size_t)n_charts);
-    int *fails = calloc((size_t)n_charts, sizeof(int));   /* failed accept tests; FROZEN: stopped */
-    unsigned char *pinned = calloc((size_t)(d.nv > 0 ? d.nv : 1), 1), *mark = calloc((size_t)(d.nv > 0 ? d.nv : 1), 1);
-    float *snap = malloc(sizeof(float) * 2 * (size_t)(d.nv > 0 ? d.nv : 1));
+    double *sum = mem_alloc(sizeof(double) * (size_t)n_charts);
+    int *bad0 = mem_alloc(sizeof(int) * (size_t)n_charts), *bad1 = mem_alloc(sizeof(int) * (size_t)n_charts);
+    int *fails = mem_calloc((size_t)n_charts, sizeof(int));   /* failed accept tests; FROZEN: stopped */
+    unsigned char *pinned = mem_calloc((size_t)(d.nv > 0 ? d.nv : 1), 1), *mark = mem_calloc((size_t)(d.nv > 0 ? d.nv : 1), 1);
+    float *snap = mem_alloc(sizeof(float) * 2 * (size_t)(d.nv > 0 ? d.nv : 1));
     nn_tensor *uv = nn_params_add(&params, d.nv, 2, "uv");
     if (!sum || !bad0 || !bad1 || !fails || !pinned || !mark || !snap || !uv) { s = error_nomem("UV refinement"); goto done; }
     memcpy(uv->data, d.uv0, sizeof(float) * 2 * (size_t)d.nv);
@@ -448,7 +449,7 @@ done:
     nn_ctx_free(ctx);
     nn_adam_free(&adam);
     nn_params_free(&params);
-    free(sum); free(bad0); free(bad1); free(fails); free(pinned); free(mark); free(snap);
+    mem_free(sum); mem_free(bad0); mem_free(bad1); mem_free(fails); mem_free(pinned); mem_free(mark); mem_free(snap);
     refine_data_free(&d);
     rep->seconds = now_seconds() - t0;
     return s;
@@ -457,9 +458,9 @@ done:
 neuv_status uv_refine_chart(const neuv_mesh *sub, const uv_refine_options *o, double *uv, uv_refine_report *rep)
 {
     if (!sub || !uv) return error_set(NEUV_ERR_INPUT, "UV refinement needs a chart and its UVs");
-    int *zero = calloc((size_t)(sub->nf > 0 ? sub->nf : 1), sizeof(int));
-    double *corner = malloc(sizeof(double) * 6 * (size_t)(sub->nf > 0 ? sub->nf : 1));
-    if (!zero || !corner) { free(zero); free(corner); return error_nomem("UV refinement"); }
+    int *zero = mem_calloc((size_t)(sub->nf > 0 ? sub->nf : 1), sizeof(int));
+    double *corner = mem_alloc(sizeof(double) * 6 * (size_t)(sub->nf > 0 ? sub->nf : 1));
+    if (!zero || !corner) { mem_free(zero); mem_free(corner); return error_nomem("UV refinement"); }
     for (int f = 0; f < sub->nf; f++)
         for (int q = 0; q < 3; q++) {
             int v = sub->tri[3 * f + q];
@@ -474,7 +475,7 @@ neuv_status uv_refine_chart(const neuv_mesh *sub, const uv_refine_options *o, do
                 uv[2 * v] = corner[6 * (size_t)f + 2 * q];
                 uv[2 * v + 1] = corner[6 * (size_t)f + 2 * q + 1];
             }
-    free(zero);
-    free(corner);
+    mem_free(zero);
+    mem_free(corner);
     return s;
 }

@@ -7,6 +7,7 @@
 #include <cholmod.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "geometry/cholesky.h"
 
 struct cholesky {
@@ -48,7 +49,7 @@ neuv_status cholesky_factor(const sparse_matrix *a, cholesky **out)
     *out = NULL;
     if (a->rows != a->cols || a->rows <= 0)
         return error_set(NEUV_ERR_INTERNAL, "cholesky: matrix is %d by %d, expected square and non-empty", a->rows, a->cols);
-    cholesky *c = calloc(1, sizeof *c);
+    cholesky *c = mem_calloc(1, sizeof *c);
     if (!c) return error_nomem("Cholesky factor");
     c->n = a->rows;
     cholmod_start(&c->common);
@@ -57,9 +58,18 @@ neuv_status cholesky_factor(const sparse_matrix *a, cholesky **out)
     /* CHOLMOD's default error handler prints to stderr; the library reports through error_set instead. */
     c->common.error_handler = NULL;
 
+    /* CHOLMOD's analysis tries another ordering when one runs out of memory,
+     * and would give a different factor: any failed allocation (CHOLMOD's go
+     * through core/mem) is reported instead. */
+    unsigned long failures = mem_failures();
     cholmod_sparse *s = lower_triangle(a, &c->common);
     if (!s) { cholesky_free(c); return error_nomem("Cholesky input matrix"); }
     c->factor = cholmod_analyze(s, &c->common);
+    if (c->factor && mem_failures() != failures) {
+        cholmod_free_sparse(&s, &c->common);
+        cholesky_free(c);
+        return error_nomem("Cholesky analysis");
+    }
     if (!c->factor) {
         cholmod_free_sparse(&s, &c->common);
         int st = c->common.status;
@@ -70,6 +80,7 @@ neuv_status cholesky_factor(const sparse_matrix *a, cholesky **out)
     int ok = cholmod_factorize(s, c->factor, &c->common);
     cholmod_free_sparse(&s, &c->common);
     int st = c->common.status;
+    if (mem_failures() != failures) st = CHOLMOD_OUT_OF_MEMORY;
     if (!ok || st == CHOLMOD_OUT_OF_MEMORY) {
         cholesky_free(c);
         return st == CHOLMOD_OUT_OF_MEMORY ? error_nomem("Cholesky factorization")
@@ -97,8 +108,17 @@ neuv_status cholesky_solve(cholesky *c, const double *b, double *x, int nrhs)
     bd.x = (void *)b;
     bd.xtype = CHOLMOD_REAL;
     bd.dtype = CHOLMOD_DOUBLE;
-    if (!cholmod_solve2(CHOLMOD_A, c->factor, &bd, NULL, &c->x, NULL, &c->y, &c->e, &c->common))
-        return c->common.status == CHOLMOD_OUT_OF_MEMORY ? error_nomem("Cholesky solve")
+    /* CHOLMOD 3's supernodal solve allocates its workspace Y, then E, and only
+     * then looks at the status, which E's allocation has reset: a failed Y
+     * went on as a NULL pointer. Y is allocated here first (same shape, so the
+     * solve reuses it) and its failure seen. */
+    if (c->factor->is_super
+        && !cholmod_ensure_dense(&c->y, (size_t)c->n, (size_t)nrhs, (size_t)c->n, c->factor->xtype, &c->common))
+        return error_nomem("Cholesky solve");
+    unsigned long failures = mem_failures();
+    if (!cholmod_solve2(CHOLMOD_A, c->factor, &bd, NULL, &c->x, NULL, &c->y, &c->e, &c->common)
+        || mem_failures() != failures)
+        return c->common.status == CHOLMOD_OUT_OF_MEMORY || mem_failures() != failures ? error_nomem("Cholesky solve")
                                                          : error_set(NEUV_ERR_INTERNAL, "cholesky: solve failed (CHOLMOD status %d)", c->common.status);
     memcpy(x, c->x->x, (size_t)c->n * (size_t)nrhs * sizeof *x);
     return NEUV_OK;
@@ -112,5 +132,5 @@ void cholesky_free(cholesky *c)
     cholmod_free_dense(&c->y, &c->common);
     cholmod_free_dense(&c->e, &c->common);
     cholmod_finish(&c->common);
-    free(c);
+    mem_free(c);
 }

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/rng.h"
 #include "core/timer.h"
 #include "core/union_find.h"
@@ -61,10 +62,10 @@ static void m_orthonormalize(int n, int k, const double *mass, double *z)
 static neuv_status eigen_dense(const sparse_matrix *L, const double *mass, int k, double *evals, double *z)
 {
     int n = L->rows;
-    double *s = calloc((size_t)n * n, sizeof *s);
-    double *w = malloc((size_t)n * sizeof *w);
-    double *isq = malloc((size_t)n * sizeof *isq);
-    if (!s || !w || !isq) { free(s); free(w); free(isq); return error_nomem("dense eigen problem"); }
+    double *s = mem_calloc((size_t)n * n, sizeof *s);
+    double *w = mem_alloc((size_t)n * sizeof *w);
+    double *isq = mem_alloc((size_t)n * sizeof *isq);
+    if (!s || !w || !isq) { mem_free(s); mem_free(w); mem_free(isq); return error_nomem("dense eigen problem"); }
     for (int i = 0; i < n; i++) isq[i] = 1.0 / sqrt(mass[i]);
     for (int r = 0; r < n; r++)
         for (int p = L->row_start[r]; p < L->row_start[r + 1]; p++)
@@ -73,12 +74,12 @@ static neuv_status eigen_dense(const sparse_matrix *L, const double *mass, int k
     double wq;
     dsyev_("V", "U", &n, s, &n, w, &wq, &lwork, &info);
     lwork = info == 0 ? (int)wq : 3 * n;
-    double *work = malloc((size_t)lwork * sizeof *work);
-    if (!work) { free(s); free(w); free(isq); return error_nomem("dense eigen workspace"); }
+    double *work = mem_alloc((size_t)lwork * sizeof *work);
+    if (!work) { mem_free(s); mem_free(w); mem_free(isq); return error_nomem("dense eigen workspace"); }
     dsyev_("V", "U", &n, s, &n, w, work, &lwork, &info);
-    free(work);
+    mem_free(work);
     if (info != 0) {
-        free(s); free(w); free(isq);
+        mem_free(s); mem_free(w); mem_free(isq);
         return error_set(NEUV_ERR_INTERNAL, "dense eigen solver failed (LAPACK dsyev info %d)", info);
     }
     /* dsyev returns ascending eigenvalues with orthonormal eigenvector columns. */
@@ -86,7 +87,7 @@ static neuv_status eigen_dense(const sparse_matrix *L, const double *mass, int k
         evals[a] = w[a];
         for (int i = 0; i < n; i++) z[(size_t)a * n + i] = isq[i] * s[(size_t)a * n + i];
     }
-    free(s); free(w); free(isq);
+    mem_free(s); mem_free(w); mem_free(isq);
     return NEUV_OK;
 }
 
@@ -126,13 +127,13 @@ static neuv_status eigen_arpack(const sparse_matrix *L, const double *mass, int 
     int ncv = 2 * k + 1 > 20 ? 2 * k + 1 : 20;
     if (ncv > n) ncv = n;
     int lworkl = ncv * (ncv + 8);
-    double *resid = malloc((size_t)n * sizeof *resid);
-    double *v = malloc((size_t)n * ncv * sizeof *v);
-    double *workd = malloc((size_t)3 * n * sizeof *workd);
-    double *workl = malloc((size_t)lworkl * sizeof *workl);
-    double *tmp = malloc((size_t)n * sizeof *tmp);
-    int *select = calloc((size_t)ncv, sizeof *select);
-    double *d = malloc((size_t)ncv * sizeof *d);
+    double *resid = mem_alloc((size_t)n * sizeof *resid);
+    double *v = mem_alloc((size_t)n * ncv * sizeof *v);
+    double *workd = mem_alloc((size_t)3 * n * sizeof *workd);
+    double *workl = mem_alloc((size_t)lworkl * sizeof *workl);
+    double *tmp = mem_alloc((size_t)n * sizeof *tmp);
+    int *select = mem_calloc((size_t)ncv, sizeof *select);
+    double *d = mem_alloc((size_t)ncv * sizeof *d);
     if (!resid || !v || !workd || !workl || !tmp || !select || !d) {
         s = error_nomem("eigen solver workspace");
         goto done;
@@ -191,7 +192,7 @@ static neuv_status eigen_arpack(const sparse_matrix *L, const double *mass, int 
 done:
     info->solve_seconds = now_seconds() - t0;
     cholesky_free(chol);
-    free(resid); free(v); free(workd); free(workl); free(tmp); free(select); free(d);
+    mem_free(resid); mem_free(v); mem_free(workd); mem_free(workl); mem_free(tmp); mem_free(select); mem_free(d);
     return s;
 }
 
@@ -255,15 +256,15 @@ static neuv_status eigen_components(const sparse_matrix *L, const double *mass, 
 {
     int n = L->rows;
     neuv_status s = NEUV_OK;
-    int *count = calloc((size_t)ncomp, sizeof *count), *local = malloc((size_t)n * sizeof *local);
-    int *order = malloc((size_t)ncomp * sizeof *order), *kc = calloc((size_t)ncomp, sizeof *kc);
-    int **verts = calloc((size_t)ncomp, sizeof *verts);
-    double **cev = calloc((size_t)ncomp, sizeof *cev), **cz = calloc((size_t)ncomp, sizeof *cz);
+    int *count = mem_calloc((size_t)ncomp, sizeof *count), *local = mem_alloc((size_t)n * sizeof *local);
+    int *order = mem_alloc((size_t)ncomp * sizeof *order), *kc = mem_calloc((size_t)ncomp, sizeof *kc);
+    int **verts = mem_calloc((size_t)ncomp, sizeof *verts);
+    double **cev = mem_calloc((size_t)ncomp, sizeof *cev), **cz = mem_calloc((size_t)ncomp, sizeof *cz);
     candidate *cand = NULL;
     if (!count || !local || !order || !kc || !verts || !cev || !cz) { s = error_nomem("eigen components"); goto done; }
     for (int i = 0; i < n; i++) local[i] = count[label[i]]++;
     for (int c = 0; c < ncomp; c++) {
-        verts[c] = malloc((size_t)count[c] * sizeof **verts);
+        verts[c] = mem_alloc((size_t)count[c] * sizeof **verts);
         if (!verts[c]) { s = error_nomem("eigen components"); goto done; }
     }
     for (int i = 0; i < n; i++) verts[label[i]][local[i]] = i;
@@ -287,9 +288,9 @@ static neuv_status eigen_components(const sparse_matrix *L, const double *mass, 
         }
         sparse_matrix sub;
         memset(&sub, 0, sizeof sub);
-        double *smass = malloc((size_t)nc * sizeof *smass);
-        cev[c] = malloc((size_t)kc[c] * sizeof **cev);
-        cz[c] = malloc((size_t)nc * kc[c] * sizeof **cz);
+        double *smass = mem_alloc((size_t)nc * sizeof *smass);
+        cev[c] = mem_alloc((size_t)kc[c] * sizeof **cev);
+        cz[c] = mem_alloc((size_t)nc * kc[c] * sizeof **cz);
         if (!s && (!smass || !cev[c] || !cz[c])) s = error_nomem("eigen components");
         if (!s) s = sparse_from_triplets(&t, &sub);
         triplets_free(&t);
@@ -298,11 +299,11 @@ static neuv_status eigen_components(const sparse_matrix *L, const double *mass, 
             s = eigen_connected(&sub, smass, kc[c], cev[c], cz[c], info);
         }
         sparse_free(&sub);
-        free(smass);
+        mem_free(smass);
         ncand += (size_t)kc[c];
     }
     if (s) goto done;
-    cand = malloc(ncand * sizeof *cand);
+    cand = mem_alloc(ncand * sizeof *cand);
     if (!cand) { s = error_nomem("eigen components"); goto done; }
     size_t e = 0;
     for (int c = 0; c < ncomp; c++)
@@ -316,12 +317,12 @@ static neuv_status eigen_components(const sparse_matrix *L, const double *mass, 
     }
 done:
     if (verts)
-        for (int c = 0; c < ncomp; c++) free(verts[c]);
+        for (int c = 0; c < ncomp; c++) mem_free(verts[c]);
     if (cev)
-        for (int c = 0; c < ncomp; c++) free(cev[c]);
+        for (int c = 0; c < ncomp; c++) mem_free(cev[c]);
     if (cz)
-        for (int c = 0; c < ncomp; c++) free(cz[c]);
-    free(count); free(local); free(order); free(kc); free(verts); free(cev); free(cz); free(cand);
+        for (int c = 0; c < ncomp; c++) mem_free(cz[c]);
+    mem_free(count); mem_free(local); mem_free(order); mem_free(kc); mem_free(verts); mem_free(cev); mem_free(cz); mem_free(cand);
     return s;
 }
 
@@ -341,32 +342,33 @@ neuv_status eigenbasis(const sparse_matrix *L, const double *mass, int k,
 
     /* Connected components of L's sparsity pattern. */
     union_find uf;
-    int *label = malloc((size_t)n * sizeof *label);
-    if (!label || uf_init(&uf, n) != 0) { free(label); return error_nomem("eigen components"); }
+    int *label = mem_alloc((size_t)n * sizeof *label);
+    if (!label || uf_init(&uf, n) != 0) { mem_free(label); return error_nomem("eigen components"); }
     for (int r = 0; r < n; r++)
         for (int p = L->row_start[r]; p < L->row_start[r + 1]; p++) uf_union(&uf, r, L->col[p]);
     info->components = uf_labels(&uf, label);
     uf_free(&uf);
+    if (info->components < 0) { mem_free(label); return error_nomem("eigen components"); }
 
-    double *z = malloc((size_t)n * k * sizeof *z);
-    double *ev = malloc((size_t)k * sizeof *ev);
-    int *order = malloc((size_t)k * sizeof *order);
-    if (!z || !ev || !order) { free(label); free(z); free(ev); free(order); return error_nomem("eigenvectors"); }
+    double *z = mem_alloc((size_t)n * k * sizeof *z);
+    double *ev = mem_alloc((size_t)k * sizeof *ev);
+    int *order = mem_alloc((size_t)k * sizeof *order);
+    if (!z || !ev || !order) { mem_free(label); mem_free(z); mem_free(ev); mem_free(order); return error_nomem("eigenvectors"); }
 
     neuv_status s = info->components == 1 ? eigen_connected(L, mass, k, ev, z, info)
                                           : eigen_components(L, mass, k, info->components, label, ev, z, info);
-    free(label);
-    if (s) { free(z); free(ev); free(order); return s; }
+    mem_free(label);
+    if (s) { mem_free(z); mem_free(ev); mem_free(order); return s; }
 
     sort_ascending(k, ev, order);
     /* Reorder columns, then check M-orthonormality in the sorted order. */
-    double *zs = malloc((size_t)n * k * sizeof *zs);
-    if (!zs) { free(z); free(ev); free(order); return error_nomem("eigenvectors"); }
+    double *zs = mem_alloc((size_t)n * k * sizeof *zs);
+    if (!zs) { mem_free(z); mem_free(ev); mem_free(order); return error_nomem("eigenvectors"); }
     for (int a = 0; a < k; a++) {
         evals[a] = ev[order[a]];
         memcpy(zs + (size_t)a * n, z + (size_t)order[a] * n, (size_t)n * sizeof *zs);
     }
-    free(z); free(ev); free(order);
+    mem_free(z); mem_free(ev); mem_free(order);
 
     info->orth_error = m_orth_error(n, k, mass, zs);
     if (info->orth_error > 1e-10) {
@@ -385,6 +387,6 @@ neuv_status eigenbasis(const sparse_matrix *L, const double *mass, int k,
     }
     for (int i = 0; i < n; i++)
         for (int a = 0; a < k; a++) evecs[(size_t)i * k + a] = zs[(size_t)a * n + i];
-    free(zs);
+    mem_free(zs);
     return NEUV_OK;
 }

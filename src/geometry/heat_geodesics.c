@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/union_find.h"
 #include "geometry/cholesky.h"
 #include "geometry/cotan_laplacian.h"
@@ -49,7 +50,7 @@ static int cmp_u64(const void *a, const void *b)
 static neuv_status mark_boundary(const neuv_mesh *m, unsigned char *on_boundary)
 {
     size_t ne = (size_t)m->nf * 3;
-    uint64_t *keys = malloc(sizeof *keys * (ne ? ne : 1));
+    uint64_t *keys = mem_alloc(sizeof *keys * (ne ? ne : 1));
     if (!keys) return error_nomem("edge list");
     for (int f = 0; f < m->nf; f++)
         for (int c = 0; c < 3; c++) {
@@ -66,7 +67,7 @@ static neuv_status mark_boundary(const neuv_mesh *m, unsigned char *on_boundary)
         }
         k = e;
     }
-    free(keys);
+    mem_free(keys);
     return NEUV_OK;
 }
 
@@ -156,7 +157,7 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
         if (m->tri[k] < 0 || m->tri[k] >= m->nv)
             return error_set(NEUV_ERR_INPUT, "face %d has vertex index %d out of range", k / 3, m->tri[k]);
 
-    heat_geodesics *g = calloc(1, sizeof *g);
+    heat_geodesics *g = mem_calloc(1, sizeof *g);
     if (!g) return error_nomem("heat geodesics");
     g->nv = m->nv;
     g->nf = m->nf;
@@ -167,17 +168,17 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
     union_find uf = {0};
     int uf_ok = 0;
 
-    g->tri = malloc(sizeof(int) * 3 * (size_t)m->nf);
-    g->grad = malloc(sizeof(double) * 9 * (size_t)m->nf);
-    g->div = malloc(sizeof(double) * 9 * (size_t)m->nf);
-    g->component = malloc(sizeof(int) * (size_t)m->nv);
-    g->interior = malloc(sizeof(int) * (size_t)m->nv);
-    mass = malloc(sizeof(double) * (size_t)m->nv);
-    diag = calloc((size_t)m->nv, sizeof(double));
-    on_boundary = calloc((size_t)m->nv, 1);
+    g->tri = mem_alloc(sizeof(int) * 3 * (size_t)m->nf);
+    g->grad = mem_alloc(sizeof(double) * 9 * (size_t)m->nf);
+    g->div = mem_alloc(sizeof(double) * 9 * (size_t)m->nf);
+    g->component = mem_alloc(sizeof(int) * (size_t)m->nv);
+    g->interior = mem_alloc(sizeof(int) * (size_t)m->nv);
+    mass = mem_alloc(sizeof(double) * (size_t)m->nv);
+    diag = mem_calloc((size_t)m->nv, sizeof(double));
+    on_boundary = mem_calloc((size_t)m->nv, 1);
     size_t block = (size_t)m->nv * HEAT_GEODESICS_BLOCK;
-    g->w_src = malloc(sizeof(double) * block);
-    g->w_heat = malloc(sizeof(double) * block);
+    g->w_src = mem_alloc(sizeof(double) * block);
+    g->w_heat = mem_alloc(sizeof(double) * block);
     if (!g->tri || !g->grad || !g->div || !g->component || !g->interior || !mass || !diag ||
         !on_boundary || !g->w_src || !g->w_heat) {
         s = error_nomem("heat geodesics");
@@ -211,7 +212,8 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
         uf_union(&uf, m->tri[3 * f], m->tri[3 * f + 2]);
     }
     g->ncomponents = uf_labels(&uf, g->component);
-    g->w_reached = calloc((size_t)g->ncomponents, 1);
+    if (g->ncomponents < 0) { g->ncomponents = 0; s = error_nomem("vertex components"); goto done; }
+    g->w_reached = mem_calloc((size_t)g->ncomponents, 1);
     if (!g->w_reached) { s = error_nomem("heat geodesics"); goto done; }
 
     if ((s = cotan_laplacian(m, &lap))) goto done;
@@ -236,8 +238,8 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
         s = factor(&sys, "Dirichlet heat", &g->heat_dirichlet);
         sparse_free(&sys);
         if (s) goto done;
-        g->w_int = malloc(sizeof(double) * (size_t)g->ninterior * HEAT_GEODESICS_BLOCK);
-        g->w_int2 = malloc(sizeof(double) * (size_t)g->ninterior * HEAT_GEODESICS_BLOCK);
+        g->w_int = mem_alloc(sizeof(double) * (size_t)g->ninterior * HEAT_GEODESICS_BLOCK);
+        g->w_int2 = mem_alloc(sizeof(double) * (size_t)g->ninterior * HEAT_GEODESICS_BLOCK);
         if (!g->w_int || !g->w_int2) { s = error_nomem("heat geodesics"); goto done; }
     }
 
@@ -265,9 +267,9 @@ neuv_status heat_geodesics_create(const neuv_mesh *m, double t_factor, heat_geod
 
 done:
     sparse_free(&lap);
-    free(mass);
-    free(diag);
-    free(on_boundary);
+    mem_free(mass);
+    mem_free(diag);
+    mem_free(on_boundary);
     if (uf_ok) uf_free(&uf);
     if (s) { heat_geodesics_free(g); return s; }
     *out = g;
@@ -280,11 +282,11 @@ void heat_geodesics_free(heat_geodesics *g)
     cholesky_free(g->heat);
     cholesky_free(g->heat_dirichlet);
     cholesky_free(g->poisson);
-    free(g->tri); free(g->grad); free(g->div);
-    free(g->component); free(g->interior);
-    free(g->w_src); free(g->w_heat); free(g->w_int); free(g->w_int2);
-    free(g->w_reached);
-    free(g);
+    mem_free(g->tri); mem_free(g->grad); mem_free(g->div);
+    mem_free(g->component); mem_free(g->interior);
+    mem_free(g->w_src); mem_free(g->w_heat); mem_free(g->w_int); mem_free(g->w_int2);
+    mem_free(g->w_reached);
+    mem_free(g);
 }
 
 int heat_geodesics_vertex_count(const heat_geodesics *g) { return g->nv; }
@@ -420,7 +422,7 @@ neuv_status heat_geodesics_batch(heat_geodesics *g, const int *sources, int nsou
 void geodesic_pairs_free(geodesic_pairs *p)
 {
     if (!p) return;
-    free(p->i); free(p->j); free(p->d);
+    mem_free(p->i); mem_free(p->j); mem_free(p->d);
     memset(p, 0, sizeof *p);
 }
 
@@ -428,11 +430,11 @@ static neuv_status pairs_push(geodesic_pairs *p, int i, int j, double d)
 {
     if (p->n == p->cap) {
         size_t cap = p->cap ? 2 * p->cap : 1024;
-        int *ni = realloc(p->i, sizeof(int) * cap);
+        int *ni = mem_realloc(p->i, sizeof(int) * cap);
         if (ni) p->i = ni;
-        int *nj = realloc(p->j, sizeof(int) * cap);
+        int *nj = mem_realloc(p->j, sizeof(int) * cap);
         if (nj) p->j = nj;
-        double *nd = realloc(p->d, sizeof(double) * cap);
+        double *nd = mem_realloc(p->d, sizeof(double) * cap);
         if (nd) p->d = nd;
         if (!ni || !nj || !nd) return error_nomem("geodesic pair list");
         p->cap = cap;
@@ -452,17 +454,17 @@ neuv_status heat_geodesics_pairs_within(heat_geodesics *g, double radius, const 
     if (subset && (s = check_vertices(g, subset, nsubset))) return s;
     if (!(radius > 0)) return NEUV_OK;
     /* Targets in ascending order so each pair is found once, from its smaller index. */
-    int *targets = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    int *targets = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
     if (!targets) return error_nomem("geodesic pair targets");
     for (int k = 0; k < n; k++) targets[k] = subset ? subset[k] : k;
     if (subset) {
         /* Ascending order and no duplicates, through a mark array (O(V)). */
-        unsigned char *mark = calloc((size_t)g->nv, 1);
-        if (!mark) { free(targets); return error_nomem("geodesic pair targets"); }
+        unsigned char *mark = mem_calloc((size_t)g->nv, 1);
+        if (!mark) { mem_free(targets); return error_nomem("geodesic pair targets"); }
         for (int k = 0; k < n; k++) mark[subset[k]] = 1;
         n = 0;
         for (int v = 0; v < g->nv; v++) if (mark[v]) targets[n++] = v;
-        free(mark);
+        mem_free(mark);
     }
     const size_t nv = (size_t)g->nv;
     s = NEUV_OK;
@@ -480,7 +482,7 @@ neuv_status heat_geodesics_pairs_within(heat_geodesics *g, double radius, const 
         }
         log_progress("geodesic pairs", (double)(b0 + k) / n, "%zu pairs", out->n);
     }
-    free(targets);
+    mem_free(targets);
     return s;
 }
 
@@ -535,10 +537,10 @@ neuv_status heat_geodesics_diameter(heat_geodesics *g, double *diameter)
     *diameter = 0.0;
     /* One start per component that has faces; both sweeps of all components
      * go through in blocks of independent right-hand sides. */
-    int *start = malloc(sizeof(int) * (size_t)g->ncomponents);
-    int *far = malloc(sizeof(int) * (size_t)g->ncomponents);
-    double *col = malloc(sizeof(double) * (size_t)g->nv);
-    if (!start || !far || !col) { free(start); free(far); free(col); return error_nomem("diameter"); }
+    int *start = mem_alloc(sizeof(int) * (size_t)g->ncomponents);
+    int *far = mem_alloc(sizeof(int) * (size_t)g->ncomponents);
+    double *col = mem_alloc(sizeof(double) * (size_t)g->nv);
+    if (!start || !far || !col) { mem_free(start); mem_free(far); mem_free(col); return error_nomem("diameter"); }
     for (int c = 0; c < g->ncomponents; c++) start[c] = -1;
     for (int f = 0; f < g->nf; f++) {
         int v = g->tri[3 * f], c = g->component[v];
@@ -566,6 +568,6 @@ neuv_status heat_geodesics_diameter(heat_geodesics *g, double *diameter)
         }
         memcpy(start, far, sizeof(int) * (size_t)n);
     }
-    free(start); free(far); free(col);
+    mem_free(start); mem_free(far); mem_free(col);
     return s;
 }

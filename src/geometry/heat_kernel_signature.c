@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 
+#include "core/mem.h"
 #include "geometry/heat_kernel_signature.h"
 
 void heat_kernel_times(int k, const double *evals, int n, double *times)
@@ -26,7 +27,7 @@ neuv_status heat_kernel_signature(int nv, int k, const double *evals, const doub
                                   int n, const double *times, double *hks)
 {
     /* w[a][j] = A exp(−λ_a t_j), so the per-vertex loop is multiply-adds only. */
-    double *w = malloc(((size_t)k * n + 1) * sizeof *w);
+    double *w = mem_alloc(((size_t)k * n + 1) * sizeof *w);
     if (!w) return error_nomem("heat kernel signature");
     for (int a = 0; a < k; a++)
         for (int j = 0; j < n; j++)
@@ -41,6 +42,6 @@ neuv_status heat_kernel_signature(int nv, int k, const double *evals, const doub
             for (int j = 0; j < n; j++) h[j] += wa[j] * p2;
         }
     }
-    free(w);
+    mem_free(w);
     return NEUV_OK;
 }

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 #include "geometry/operator_cache.h"
 
@@ -56,10 +57,10 @@ neuv_status operator_cache_dir(char **dir)
     char *d = NULL;
     /* XDG: a relative XDG_CACHE_HOME is invalid and ignored. */
     if (xdg && xdg[0] == '/') {
-        d = malloc(strlen(xdg) + 8);
+        d = mem_alloc(strlen(xdg) + 8);
         if (d) sprintf(d, "%s/neuv", xdg);
     } else if (home && home[0]) {
-        d = malloc(strlen(home) + 16);
+        d = mem_alloc(strlen(home) + 16);
         if (d) sprintf(d, "%s/.cache/neuv", home);
     } else {
         return error_set(NEUV_ERR_IO, "no cache folder: neither XDG_CACHE_HOME nor HOME is set");
@@ -67,7 +68,7 @@ neuv_status operator_cache_dir(char **dir)
     if (!d) return error_nomem("cache path");
     if (make_dirs(d) != 0) {
         neuv_status s = error_set(NEUV_ERR_IO, "cannot create cache folder %s: %s", d, strerror(errno));
-        free(d);
+        mem_free(d);
         return s;
     }
     *dir = d;
@@ -179,9 +180,9 @@ static int sparse_valid(const sparse_matrix *a)
 static int take_sparse(reader *r, int n, int64_t nnz, sparse_matrix *a)
 {
     a->rows = a->cols = n;
-    a->row_start = malloc(((size_t)n + 1) * sizeof *a->row_start);
-    a->col = malloc(((size_t)nnz + 1) * sizeof *a->col);
-    a->val = malloc(((size_t)nnz + 1) * sizeof *a->val);
+    a->row_start = mem_alloc(((size_t)n + 1) * sizeof *a->row_start);
+    a->col = mem_alloc(((size_t)nnz + 1) * sizeof *a->col);
+    a->val = mem_alloc(((size_t)nnz + 1) * sizeof *a->val);
     if (!a->row_start || !a->col || !a->val) return -2;
     if (take(r, a->row_start, ((size_t)n + 1) * sizeof *a->row_start) || take(r, a->col, (size_t)nnz * sizeof *a->col) ||
         take(r, a->val, (size_t)nnz * sizeof *a->val))
@@ -237,27 +238,27 @@ neuv_status operator_cache_load(const char *path, uint64_t key, int nv, int k, i
         fclose(fp);
         return bad_file(path, "length does not match its header (truncated?)");
     }
-    unsigned char *buf = malloc(total);
+    unsigned char *buf = mem_alloc(total);
     if (!buf) { fclose(fp); return error_nomem("cache file"); }
     memcpy(buf, hb, sizeof hb);
     size_t got = fread(buf + sizeof hb, 1, total - sizeof hb, fp);
     fclose(fp);
-    if (got != total - sizeof hb) { free(buf); return bad_file(path, "truncated"); }
+    if (got != total - sizeof hb) { mem_free(buf); return bad_file(path, "truncated"); }
     uint32_t crc;
     memcpy(&crc, buf + total - 4, 4);
-    if (crc32_bytes(0, buf, total - 4) != crc) { free(buf); return bad_file(path, "checksum mismatch"); }
+    if (crc32_bytes(0, buf, total - 4) != crc) { mem_free(buf); return bad_file(path, "checksum mismatch"); }
 
     reader r = {buf + sizeof hb, total - sizeof hb - 4};
     ops->nv = nv;
     ops->k = k;
     ops->n_hks = n_hks;
     ops->sigma = h.sigma;
-    ops->mass = malloc(n * sizeof(double));
-    ops->evals = malloc((size_t)k * sizeof(double));
-    ops->evecs = malloc(n * k * sizeof(double));
-    ops->frames = malloc(n * 9 * sizeof(double));
-    ops->hks = malloc(n * n_hks * sizeof(double));
-    ops->hks_times = malloc((size_t)n_hks * sizeof(double));
+    ops->mass = mem_alloc(n * sizeof(double));
+    ops->evals = mem_alloc((size_t)k * sizeof(double));
+    ops->evecs = mem_alloc(n * k * sizeof(double));
+    ops->frames = mem_alloc(n * 9 * sizeof(double));
+    ops->hks = mem_alloc(n * n_hks * sizeof(double));
+    ops->hks_times = mem_alloc((size_t)n_hks * sizeof(double));
     int rc = -2;
     if (ops->mass && ops->evals && ops->evecs && ops->frames && ops->hks && ops->hks_times) {
         rc = take_sparse(&r, nv, h.nnz_L, &ops->L);
@@ -271,7 +272,7 @@ neuv_status operator_cache_load(const char *path, uint64_t key, int nv, int k, i
         if (!rc) rc = take(&r, ops->hks_times, (size_t)n_hks * sizeof(double));
         if (!rc && r.left != 0) rc = -1;
     }
-    free(buf);
+    mem_free(buf);
     if (rc) {
         operators_free(ops);
         return rc == -2 ? error_nomem("cached operators") : bad_file(path, "inconsistent contents");
@@ -292,12 +293,12 @@ neuv_status operators_get(const neuv_mesh *m, const operators_params *params, in
     char *dir = NULL, *path = NULL;
     uint64_t key = operator_cache_key(m, &p);
     if (operator_cache_dir(&dir) == NEUV_OK) {
-        path = malloc(strlen(dir) + 32);
+        path = mem_alloc(strlen(dir) + 32);
         if (path) sprintf(path, "%s/ops-%016llx.bin", dir, (unsigned long long)key);
     } else {
         log_message(NEUV_LOG_DEBUG, "operator cache off: %s", neuv_last_error());
     }
-    free(dir);
+    mem_free(dir);
     if (path) {
         double t0 = now_seconds();
         struct stat st;
@@ -307,7 +308,7 @@ neuv_status operators_get(const neuv_mesh *m, const operators_params *params, in
                 ops->seconds.cache_load = now_seconds() - t0;
                 ops->seconds.total = ops->seconds.cache_load;
                 if (cache_hit) *cache_hit = 1;
-                if (cache_path) *cache_path = path; else free(path);
+                if (cache_path) *cache_path = path; else mem_free(path);
                 log_progress("operators", 1.0, "from cache");
                 return NEUV_OK;
             }
@@ -315,9 +316,9 @@ neuv_status operators_get(const neuv_mesh *m, const operators_params *params, in
         }
     }
     neuv_status s = operators_compute(m, &p, ops);
-    if (s) { free(path); return s; }
+    if (s) { mem_free(path); return s; }
     if (path && operator_cache_save(path, key, ops) != NEUV_OK)
         log_message(NEUV_LOG_DEBUG, "operator cache not written: %s", neuv_last_error());
-    if (cache_path) *cache_path = path; else free(path);
+    if (cache_path) *cache_path = path; else mem_free(path);
     return NEUV_OK;
 }

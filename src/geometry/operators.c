@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 #include "geometry/cotan_laplacian.h"
 #include "geometry/eigenbasis.h"
@@ -26,12 +27,12 @@ void operators_free(operators *ops)
     sparse_free(&ops->L);
     sparse_free(&ops->grad_x);
     sparse_free(&ops->grad_y);
-    free(ops->mass);
-    free(ops->evals);
-    free(ops->evecs);
-    free(ops->frames);
-    free(ops->hks);
-    free(ops->hks_times);
+    mem_free(ops->mass);
+    mem_free(ops->evals);
+    mem_free(ops->evecs);
+    mem_free(ops->frames);
+    mem_free(ops->hks);
+    mem_free(ops->hks_times);
     memset(ops, 0, sizeof *ops);
 }
 
@@ -60,12 +61,12 @@ neuv_status operators_compute(const neuv_mesh *m, const operators_params *params
     neuv_status s;
 
     log_progress("operators", 0.0, "laplacian");
-    ops->mass = malloc((size_t)nv * sizeof *ops->mass);
-    ops->evals = malloc((size_t)k * sizeof *ops->evals);
-    ops->evecs = malloc((size_t)nv * k * sizeof *ops->evecs);
-    ops->frames = malloc((size_t)nv * 9 * sizeof *ops->frames);
-    ops->hks = malloc((size_t)nv * p.n_hks * sizeof *ops->hks);
-    ops->hks_times = malloc((size_t)p.n_hks * sizeof *ops->hks_times);
+    ops->mass = mem_alloc((size_t)nv * sizeof *ops->mass);
+    ops->evals = mem_alloc((size_t)k * sizeof *ops->evals);
+    ops->evecs = mem_alloc((size_t)nv * k * sizeof *ops->evecs);
+    ops->frames = mem_alloc((size_t)nv * 9 * sizeof *ops->frames);
+    ops->hks = mem_alloc((size_t)nv * p.n_hks * sizeof *ops->hks);
+    ops->hks_times = mem_alloc((size_t)p.n_hks * sizeof *ops->hks_times);
     if (!ops->mass || !ops->evals || !ops->evecs || !ops->frames || !ops->hks || !ops->hks_times) {
         s = error_nomem("geometry operators");
         goto fail;

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "geometry/sparse_matrix.h"
 
 neuv_status triplets_init(triplet_list *t, int rows, int cols, size_t reserve)
@@ -12,9 +13,9 @@ neuv_status triplets_init(triplet_list *t, int rows, int cols, size_t reserve)
     t->rows = rows;
     t->cols = cols;
     if (reserve < 16) reserve = 16;
-    t->i = malloc(reserve * sizeof *t->i);
-    t->j = malloc(reserve * sizeof *t->j);
-    t->v = malloc(reserve * sizeof *t->v);
+    t->i = mem_alloc(reserve * sizeof *t->i);
+    t->j = mem_alloc(reserve * sizeof *t->j);
+    t->v = mem_alloc(reserve * sizeof *t->v);
     if (!t->i || !t->j || !t->v) {
         triplets_free(t);
         return error_nomem("sparse matrix triplets");
@@ -31,13 +32,13 @@ neuv_status triplets_add(triplet_list *t, int i, int j, double v)
         /* Grow all three arrays together; keep the old ones on failure so
          * triplets_free still releases everything. */
         size_t cap = t->cap ? 2 * t->cap : 16;
-        int *ni = realloc(t->i, cap * sizeof *ni);
+        int *ni = mem_realloc(t->i, cap * sizeof *ni);
         if (!ni) return error_nomem("sparse matrix triplets");
         t->i = ni;
-        int *nj = realloc(t->j, cap * sizeof *nj);
+        int *nj = mem_realloc(t->j, cap * sizeof *nj);
         if (!nj) return error_nomem("sparse matrix triplets");
         t->j = nj;
-        double *nv = realloc(t->v, cap * sizeof *nv);
+        double *nv = mem_realloc(t->v, cap * sizeof *nv);
         if (!nv) return error_nomem("sparse matrix triplets");
         t->v = nv;
         t->cap = cap;
@@ -52,9 +53,9 @@ neuv_status triplets_add(triplet_list *t, int i, int j, double v)
 void triplets_free(triplet_list *t)
 {
     if (!t) return;
-    free(t->i);
-    free(t->j);
-    free(t->v);
+    mem_free(t->i);
+    mem_free(t->j);
+    mem_free(t->v);
     memset(t, 0, sizeof *t);
 }
 
@@ -65,12 +66,12 @@ neuv_status sparse_from_triplets(const triplet_list *t, sparse_matrix *out)
     memset(out, 0, sizeof *out);
     size_t n = t->n;
     int rows = t->rows, cols = t->cols;
-    size_t *cstart = calloc((size_t)cols + 1, sizeof *cstart);
-    size_t *by_col = malloc((n ? n : 1) * sizeof *by_col);
-    int *rcount = calloc((size_t)rows + 1, sizeof *rcount);
-    size_t *rpos = malloc(((size_t)rows + 1) * sizeof *rpos);
-    size_t *order = malloc((n ? n : 1) * sizeof *order);
-    int *row_start = calloc((size_t)rows + 1, sizeof *row_start);
+    size_t *cstart = mem_calloc((size_t)cols + 1, sizeof *cstart);
+    size_t *by_col = mem_alloc((n ? n : 1) * sizeof *by_col);
+    int *rcount = mem_calloc((size_t)rows + 1, sizeof *rcount);
+    size_t *rpos = mem_alloc(((size_t)rows + 1) * sizeof *rpos);
+    size_t *order = mem_alloc((n ? n : 1) * sizeof *order);
+    int *row_start = mem_calloc((size_t)rows + 1, sizeof *row_start);
     if (!cstart || !by_col || !rcount || !rpos || !order || !row_start) goto nomem;
 
     for (size_t k = 0; k < n; k++) cstart[t->j[k] + 1]++;
@@ -92,12 +93,12 @@ neuv_status sparse_from_triplets(const triplet_list *t, sparse_matrix *out)
         if (q == 0 || t->i[k] != t->i[order[q - 1]] || t->j[k] != t->j[order[q - 1]]) nnz++;
     }
     if (nnz > (size_t)0x7fffffff) {
-        free(cstart); free(by_col); free(rcount); free(rpos); free(order); free(row_start);
+        mem_free(cstart); mem_free(by_col); mem_free(rcount); mem_free(rpos); mem_free(order); mem_free(row_start);
         return error_set(NEUV_ERR_NOMEM, "sparse matrix with %zu nonzeros is too large", nnz);
     }
-    int *col = malloc((nnz ? nnz : 1) * sizeof *col);
-    double *val = malloc((nnz ? nnz : 1) * sizeof *val);
-    if (!col || !val) { free(col); free(val); goto nomem; }
+    int *col = mem_alloc((nnz ? nnz : 1) * sizeof *col);
+    double *val = mem_alloc((nnz ? nnz : 1) * sizeof *val);
+    if (!col || !val) { mem_free(col); mem_free(val); goto nomem; }
 
     size_t e = 0;
     for (size_t q = 0; q < n; q++) {
@@ -113,7 +114,7 @@ neuv_status sparse_from_triplets(const triplet_list *t, sparse_matrix *out)
     }
     for (int r = 0; r < rows; r++) row_start[r + 1] += row_start[r];
 
-    free(cstart); free(by_col); free(rcount); free(rpos); free(order);
+    mem_free(cstart); mem_free(by_col); mem_free(rcount); mem_free(rpos); mem_free(order);
     out->rows = rows;
     out->cols = cols;
     out->row_start = row_start;
@@ -122,16 +123,16 @@ neuv_status sparse_from_triplets(const triplet_list *t, sparse_matrix *out)
     return NEUV_OK;
 
 nomem:
-    free(cstart); free(by_col); free(rcount); free(rpos); free(order); free(row_start);
+    mem_free(cstart); mem_free(by_col); mem_free(rcount); mem_free(rpos); mem_free(order); mem_free(row_start);
     return error_nomem("sparse matrix");
 }
 
 void sparse_free(sparse_matrix *a)
 {
     if (!a) return;
-    free(a->row_start);
-    free(a->col);
-    free(a->val);
+    mem_free(a->row_start);
+    mem_free(a->col);
+    mem_free(a->val);
     memset(a, 0, sizeof *a);
 }
 
@@ -167,9 +168,9 @@ neuv_status sparse_copy(const sparse_matrix *a, sparse_matrix *out)
 {
     memset(out, 0, sizeof *out);
     size_t nnz = sparse_nnz(a);
-    out->row_start = malloc(((size_t)a->rows + 1) * sizeof *out->row_start);
-    out->col = malloc((nnz ? nnz : 1) * sizeof *out->col);
-    out->val = malloc((nnz ? nnz : 1) * sizeof *out->val);
+    out->row_start = mem_alloc(((size_t)a->rows + 1) * sizeof *out->row_start);
+    out->col = mem_alloc((nnz ? nnz : 1) * sizeof *out->col);
+    out->val = mem_alloc((nnz ? nnz : 1) * sizeof *out->val);
     if (!out->row_start || !out->col || !out->val) {
         sparse_free(out);
         return error_nomem("sparse matrix copy");

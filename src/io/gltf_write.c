@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/json_writer.h"
+#include "core/mem.h"
 #include "io/byte_order.h"
 #include "io/mesh_io.h"
 #include "io/seam_split.h"
@@ -19,7 +20,7 @@ enum { GL_FLOAT = 5126, GL_UNSIGNED_INT = 5125, GL_ARRAY_BUFFER = 34962, GL_ELEM
 static char *base64(const unsigned char *data, size_t n)
 {
     static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    char *out = malloc(4 * ((n + 2) / 3) + 1), *q = out;
+    char *out = mem_alloc(4 * ((n + 2) / 3) + 1), *q = out;
     if (!out) return NULL;
     size_t i = 0;
     for (; i + 2 < n; i += 3) {
@@ -76,7 +77,7 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
 
     size_t pos_bytes = (size_t)sp.nv * 12, uv_bytes = sp.uv ? (size_t)sp.nv * 8 : 0;
     size_t idx_bytes = (size_t)m->nf * 12, total = pos_bytes + uv_bytes + idx_bytes; /* all multiples of 4 */
-    unsigned char *buf = malloc(total);
+    unsigned char *buf = mem_alloc(total);
     if (!buf) { seam_split_free(&sp); return error_nomem("the glTF buffer"); }
     float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     unsigned char *q = buf;
@@ -138,19 +139,19 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
     json_key(&w, "byteLength"); json_int(&w, (long long)total);
     if (!binary) {
         char *b64 = base64(buf, total);
-        if (!b64) { free(buf); json_free(&w); return error_nomem("the glTF buffer"); }
+        if (!b64) { mem_free(buf); json_free(&w); return error_nomem("the glTF buffer"); }
         static const char prefix[] = "data:application/octet-stream;base64,";
-        char *uri = malloc(sizeof prefix + strlen(b64));
-        if (!uri) { free(b64); free(buf); json_free(&w); return error_nomem("the glTF buffer"); }
+        char *uri = mem_alloc(sizeof prefix + strlen(b64));
+        if (!uri) { mem_free(b64); mem_free(buf); json_free(&w); return error_nomem("the glTF buffer"); }
         memcpy(uri, prefix, sizeof prefix - 1);
         strcpy(uri + sizeof prefix - 1, b64);
-        free(b64);
+        mem_free(b64);
         json_key(&w, "uri"); json_string(&w, uri);
-        free(uri);
+        mem_free(uri);
     }
     json_end_object(&w); json_end_array(&w);
     json_end_object(&w);
-    if (w.failed) { free(buf); json_free(&w); return error_nomem("the glTF header"); }
+    if (w.failed) { mem_free(buf); json_free(&w); return error_nomem("the glTF header"); }
 
     const char *text = json_text(&w);
     size_t tlen = strlen(text);
@@ -159,7 +160,7 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
         size_t jpad = (4 - tlen % 4) % 4;
         size_t length = 12 + 8 + tlen + jpad + 8 + total;
         if (length > UINT32_MAX) {
-            free(buf); json_free(&w);
+            mem_free(buf); json_free(&w);
             return error_set(NEUV_ERR_INPUT, "the mesh is too large for GLB (over 4 GiB)");
         }
         unsigned char head[20], *h = head;
@@ -179,7 +180,7 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
         fwrite(text, 1, tlen, fp);
         fputc('\n', fp);
     }
-    free(buf);
+    mem_free(buf);
     json_free(&w);
     return ferror(fp) ? error_set(NEUV_ERR_IO, "write failed (disk full?)") : NEUV_OK;
 }

@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/mem.h"
 
 static void write_vertices(FILE *fp, const neuv_mesh *m, const char *prefix)
 {
@@ -32,16 +33,16 @@ static void write_ply(FILE *fp, const neuv_mesh *m, const int *label)
 /* Groups in increasing label order; faces keep their relative order inside a group. */
 static neuv_status write_obj(FILE *fp, const neuv_mesh *m, const int *label, int max_label)
 {
-    int *start = calloc((size_t)max_label + 2, sizeof(int));
-    int *order = malloc(sizeof(int) * (size_t)(m->nf ? m->nf : 1));
-    if (!start || !order) { free(start); free(order); return error_nomem("label groups"); }
+    int *start = mem_calloc((size_t)max_label + 2, sizeof(int));
+    int *order = mem_alloc(sizeof(int) * (size_t)(m->nf ? m->nf : 1));
+    if (!start || !order) { mem_free(start); mem_free(order); return error_nomem("label groups"); }
     for (int f = 0; f < m->nf; f++) start[label[f] + 1]++;
     for (int l = 0; l <= max_label; l++) start[l + 1] += start[l];
-    int *fill = malloc(sizeof(int) * ((size_t)max_label + 1));
-    if (!fill) { free(start); free(order); return error_nomem("label groups"); }
+    int *fill = mem_alloc(sizeof(int) * ((size_t)max_label + 1));
+    if (!fill) { mem_free(start); mem_free(order); return error_nomem("label groups"); }
     memcpy(fill, start, sizeof(int) * ((size_t)max_label + 1));
     for (int f = 0; f < m->nf; f++) order[fill[label[f]]++] = f;
-    free(fill);
+    mem_free(fill);
     fprintf(fp, "# neuv segment: one group per chart\n");
     write_vertices(fp, m, "v ");
     for (int l = 0; l <= max_label; l++) {
@@ -52,8 +53,8 @@ static neuv_status write_obj(FILE *fp, const neuv_mesh *m, const int *label, int
             fprintf(fp, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
         }
     }
-    free(start);
-    free(order);
+    mem_free(start);
+    mem_free(order);
     return NEUV_OK;
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "io/polygon_triangulate.h"
 
 /* nv and nf are ints everywhere in neuv, and index arithmetic uses 3*nf. */
@@ -16,8 +17,8 @@ void mesh_builder_init(mesh_builder *b) { memset(b, 0, sizeof *b); }
 
 void mesh_builder_free(mesh_builder *b)
 {
-    free(b->pos); free(b->uv); free(b->tri); free(b->tri_uv); free(b->origin);
-    free(b->scratch_pos); free(b->scratch_xy); free(b->scratch_idx); free(b->scratch_tri);
+    mem_free(b->pos); mem_free(b->uv); mem_free(b->tri); mem_free(b->tri_uv); mem_free(b->origin);
+    mem_free(b->scratch_pos); mem_free(b->scratch_xy); mem_free(b->scratch_idx); mem_free(b->scratch_tri);
     mesh_builder_init(b);
 }
 
@@ -26,7 +27,7 @@ static int grow(void **p, size_t *cap, size_t need, size_t item)
     if (need <= *cap) return 1;
     size_t c = *cap ? *cap : 256;
     while (c < need) c *= 2;
-    void *q = realloc(*p, c * item);
+    void *q = mem_realloc(*p, c * item);
     if (!q) return 0;
     *p = q;
     *cap = c;
@@ -109,13 +110,13 @@ neuv_status mesh_builder_add_polygon(mesh_builder *b, int n, const int *v, const
     }
     if ((size_t)n > b->cap_scratch) {
         size_t c = (size_t)n * 2;
-        double *sp = realloc(b->scratch_pos, c * 3 * sizeof(double));
+        double *sp = mem_realloc(b->scratch_pos, c * 3 * sizeof(double));
         if (sp) b->scratch_pos = sp;
-        double *sx = realloc(b->scratch_xy, c * 2 * sizeof(double));
+        double *sx = mem_realloc(b->scratch_xy, c * 2 * sizeof(double));
         if (sx) b->scratch_xy = sx;
-        int *si = realloc(b->scratch_idx, c * sizeof(int));
+        int *si = mem_realloc(b->scratch_idx, c * sizeof(int));
         if (si) b->scratch_idx = si;
-        int *st = realloc(b->scratch_tri, c * 3 * sizeof(int));
+        int *st = mem_realloc(b->scratch_tri, c * 3 * sizeof(int));
         if (st) b->scratch_tri = st;
         if (!sp || !sx || !si || !st) return error_nomem("a polygon");
         b->cap_scratch = c;
@@ -184,24 +185,24 @@ neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style st, neuv_mes
             }
     }
 
-    neuv_mesh *m = calloc(1, sizeof *m);
+    neuv_mesh *m = mem_calloc(1, sizeof *m);
     if (!m) { s = error_nomem("a mesh"); goto done; }
     /* Hand the arrays over, shrunk to size (a failed shrink keeps the block). */
     m->nv = b->nv;
     m->nf = b->nf;
     m->pos = b->pos; b->pos = NULL;
     m->tri = b->tri; b->tri = NULL;
-    double *pp = realloc(m->pos, 3 * sizeof(double) * (size_t)(m->nv > 0 ? m->nv : 1));
+    double *pp = mem_realloc(m->pos, 3 * sizeof(double) * (size_t)(m->nv > 0 ? m->nv : 1));
     if (pp) m->pos = pp;
-    int *tp = realloc(m->tri, 3 * sizeof(int) * (size_t)m->nf);
+    int *tp = mem_realloc(m->tri, 3 * sizeof(int) * (size_t)m->nf);
     if (tp) m->tri = tp;
     if (keep_uv && b->nuv > 0) {
         m->nuv = b->nuv;
         m->uv = b->uv; b->uv = NULL;
         m->tri_uv = b->tri_uv; b->tri_uv = NULL;
-        double *up = realloc(m->uv, 2 * sizeof(double) * (size_t)m->nuv);
+        double *up = mem_realloc(m->uv, 2 * sizeof(double) * (size_t)m->nuv);
         if (up) m->uv = up;
-        int *tup = realloc(m->tri_uv, 3 * sizeof(int) * (size_t)m->nf);
+        int *tup = mem_realloc(m->tri_uv, 3 * sizeof(int) * (size_t)m->nf);
         if (tup) m->tri_uv = tup;
     }
     *out = m;

@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 
 /* Lower-cased extension with its dot (".obj"), "" when there is none. */
 static void extension_of(const char *path, char ext[16])
@@ -32,13 +33,13 @@ static neuv_status read_all(FILE *fp, char **data, size_t *len)
     size_t cap = 1 << 16, n = 0;
     struct stat st;
     if (fstat(fileno(fp), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) cap = (size_t)st.st_size + 1;
-    char *buf = malloc(cap);
+    char *buf = mem_alloc(cap);
     if (!buf) return error_nomem("the file contents");
     for (;;) {
         if (n + 1 >= cap) {
             size_t c = cap * 2;
-            char *b = realloc(buf, c);
-            if (!b) { free(buf); return error_nomem("the file contents"); }
+            char *b = mem_realloc(buf, c);
+            if (!b) { mem_free(buf); return error_nomem("the file contents"); }
             buf = b;
             cap = c;
         }
@@ -47,7 +48,7 @@ static neuv_status read_all(FILE *fp, char **data, size_t *len)
         if (got == 0) break;
     }
     if (ferror(fp)) {
-        free(buf);
+        mem_free(buf);
         return error_set(NEUV_ERR_IO, "read failed: %s", strerror(errno));
     }
     buf[n] = '\0';
@@ -102,7 +103,7 @@ static neuv_status mesh_load(const char *path, neuv_mesh **out)
     } else {
         s = fmt == FMT_OBJ ? io_read_obj(data, len, out) : io_read_off(data, len, out);
     }
-    free(data);
+    mem_free(data);
     return s;
 }
 
@@ -139,8 +140,9 @@ neuv_status neuv_mesh_save(const neuv_mesh *mesh, const char *path)
     if (s != NEUV_OK) return s;
     /* A large buffer: the writers emit many small records. Freed only after
      * the FILE that uses it is closed (commit or abort). */
-    char *iobuf = malloc(1 << 20);
-    if (iobuf) setvbuf(af.fp, iobuf, _IOFBF, 1 << 20);
+    char *iobuf = mem_alloc(1 << 20);
+    if (!iobuf) { atomic_file_abort(&af); return error_nomem("the output buffer"); }
+    setvbuf(af.fp, iobuf, _IOFBF, 1 << 20);
     switch (kind) {
     case 1: s = io_write_obj(mesh, af.fp); break;
     case 2: s = io_write_ply(mesh, af.fp); break;
@@ -148,6 +150,6 @@ neuv_status neuv_mesh_save(const neuv_mesh *mesh, const char *path)
     }
     if (s != NEUV_OK) atomic_file_abort(&af);
     else s = atomic_file_commit(&af);
-    free(iobuf);
+    mem_free(iobuf);
     return s;
 }

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "io/mesh_builder.h"
 #include "io/mesh_io.h"
 #include "io/text_scan.h"
@@ -42,9 +43,9 @@ static int corner_push(corner_buf *cb, int v, int uv)
 {
     if (cb->n == cb->cap) {
         int c = cb->cap ? 2 * cb->cap : 16;
-        int *a = realloc(cb->v, sizeof(int) * (size_t)c);
+        int *a = mem_realloc(cb->v, sizeof(int) * (size_t)c);
         if (a) cb->v = a;
-        int *b = realloc(cb->uv, sizeof(int) * (size_t)c);
+        int *b = mem_realloc(cb->uv, sizeof(int) * (size_t)c);
         if (b) cb->uv = b;
         if (!a || !b) return 0;
         cb->cap = c;
@@ -163,8 +164,8 @@ neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
          * does not change the surface. */
         text_next_line(&c);
     }
-    free(cb.v);
-    free(cb.uv);
+    mem_free(cb.v);
+    mem_free(cb.uv);
     if (s != NEUV_OK) { mesh_builder_free(&b); return s; }
     mesh_builder_style style = {1, 1};
     return mesh_builder_finish(&b, style, out);

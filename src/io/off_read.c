@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "io/mesh_builder.h"
 #include "io/mesh_io.h"
 #include "io/text_scan.h"
@@ -69,7 +70,7 @@ neuv_status io_read_off(const char *text, size_t len, neuv_mesh **out)
     long long rf = nf < (long long)(len / 8) + 16 ? nf : (long long)(len / 8) + 16;
     if ((s = mesh_builder_reserve(&b, rv, rf)) != NEUV_OK) goto fail;
 
-    if (has_st && !(st = malloc(sizeof(double) * 2 * (size_t)(nv > 0 ? nv : 1)))) {
+    if (has_st && !(st = mem_alloc(sizeof(double) * 2 * (size_t)(nv > 0 ? nv : 1)))) {
         s = error_nomem("texture coordinates");
         goto fail;
     }
@@ -113,7 +114,7 @@ neuv_status io_read_off(const char *text, size_t len, neuv_mesh **out)
         if (n < 3) { s = error_set(NEUV_ERR_INPUT, "line %d: face %lld has %lld corners; a face needs at least 3", c.line, f, n); break; }
         if (n > 1000000) { s = error_set(NEUV_ERR_INPUT, "line %d: face %lld claims %lld corners", c.line, f, n); break; }
         if (n > cap) {
-            int *a = realloc(corners, sizeof(int) * (size_t)n);
+            int *a = mem_realloc(corners, sizeof(int) * (size_t)n);
             if (!a) { s = error_nomem("a face"); break; }
             corners = a;
             cap = (int)n;
@@ -137,13 +138,13 @@ neuv_status io_read_off(const char *text, size_t len, neuv_mesh **out)
         for (long long i = 0; i < nv && s == NEUV_OK; i++) s = mesh_builder_add_uv(&b, st[2 * i], st[2 * i + 1]);
     }
     if (s != NEUV_OK) goto fail;
-    free(corners);
-    free(st);
+    mem_free(corners);
+    mem_free(st);
     mesh_builder_style style = {0, 0};
     return mesh_builder_finish(&b, style, out);
 fail:
-    free(corners);
-    free(st);
+    mem_free(corners);
+    mem_free(st);
     mesh_builder_free(&b);
     return s;
 }

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "io/mesh_builder.h"
 #include "io/mesh_io.h"
 #include "io/text_scan.h"
@@ -114,8 +115,8 @@ typedef struct ply_header {
 
 static void header_free(ply_header *h)
 {
-    for (int i = 0; i < h->nelems; i++) free(h->elems[i].props);
-    free(h->elems);
+    for (int i = 0; i < h->nelems; i++) mem_free(h->elems[i].props);
+    mem_free(h->elems);
     memset(h, 0, sizeof *h);
 }
 
@@ -179,7 +180,7 @@ static neuv_status parse_header(const char *data, size_t len, ply_header *h)
             long long count = nw >= 3 ? strtoll(w[2], &end, 10) : -1;
             if (nw < 3 || *end || count < 0)
                 return error_set(NEUV_ERR_INPUT, "line %d: malformed PLY element line", line_no);
-            ply_element *e = realloc(h->elems, sizeof *e * (size_t)(h->nelems + 1));
+            ply_element *e = mem_realloc(h->elems, sizeof *e * (size_t)(h->nelems + 1));
             if (!e) return error_nomem("the PLY header");
             h->elems = e;
             e = &h->elems[h->nelems++];
@@ -215,7 +216,7 @@ static neuv_status parse_header(const char *data, size_t len, ply_header *h)
                 return error_set(NEUV_ERR_INPUT, "line %d: malformed PLY property line", line_no);
             }
             pr.role = role_of(e->kind, name, pr.count_type != T_NONE);
-            ply_prop *ps = realloc(e->props, sizeof *ps * (size_t)(e->nprops + 1));
+            ply_prop *ps = mem_realloc(e->props, sizeof *ps * (size_t)(e->nprops + 1));
             if (!ps) return error_nomem("the PLY header");
             e->props = ps;
             e->props[e->nprops++] = pr;
@@ -256,11 +257,11 @@ static int scratch_fit(face_scratch *fs, size_t n)
 {
     if (n <= fs->cap) return 1;
     size_t c = n < 64 ? 64 : n;
-    int *a = realloc(fs->v, c * sizeof(int));
+    int *a = mem_realloc(fs->v, c * sizeof(int));
     if (a) fs->v = a;
-    int *b = realloc(fs->uv, c * sizeof(int));
+    int *b = mem_realloc(fs->uv, c * sizeof(int));
     if (b) fs->uv = b;
-    double *t = realloc(fs->tc, 2 * c * sizeof(double));
+    double *t = mem_realloc(fs->tc, 2 * c * sizeof(double));
     if (t) fs->tc = t;
     if (!a || !b || !t) return 0;
     fs->cap = c;
@@ -381,9 +382,9 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
             }
         }
     }
-    free(fs.v);
-    free(fs.uv);
-    free(fs.tc);
+    mem_free(fs.v);
+    mem_free(fs.uv);
+    mem_free(fs.tc);
     header_free(&h);
     if (s != NEUV_OK) { mesh_builder_free(&b); return s; }
     mesh_builder_style style = {0, 0};

@@ -4,10 +4,11 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 void seam_split_free(seam_split *s)
 {
-    free(s->src); free(s->uv); free(s->tri);
+    mem_free(s->src); mem_free(s->uv); mem_free(s->tri);
     memset(s, 0, sizeof *s);
 }
 
@@ -15,11 +16,11 @@ neuv_status seam_split_vertices(const neuv_mesh *m, seam_split *out)
 {
     memset(out, 0, sizeof *out);
     size_t nc = 3 * (size_t)m->nf;
-    out->tri = malloc(sizeof(int) * (nc > 0 ? nc : 1));
+    out->tri = mem_alloc(sizeof(int) * (nc > 0 ? nc : 1));
     if (!out->tri) return error_nomem("split faces");
     if (m->nuv == 0 || !m->tri_uv) {
         out->nv = m->nv;
-        out->src = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+        out->src = mem_alloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
         if (!out->src) { seam_split_free(out); return error_nomem("split vertices"); }
         for (int v = 0; v < m->nv; v++) out->src[v] = v;
         memcpy(out->tri, m->tri, sizeof(int) * nc);
@@ -27,24 +28,24 @@ neuv_status seam_split_vertices(const neuv_mesh *m, seam_split *out)
     }
     /* Corners grouped by vertex (counting sort keeps face order within a
      * vertex, which makes the output deterministic). */
-    int *start = calloc((size_t)m->nv + 1, sizeof(int));
-    int *corner = malloc(sizeof(int) * (nc > 0 ? nc : 1));
+    int *start = mem_calloc((size_t)m->nv + 1, sizeof(int));
+    int *corner = mem_alloc(sizeof(int) * (nc > 0 ? nc : 1));
     /* At most one output vertex per corner, plus one per unused vertex. */
     size_t cap = nc + (size_t)m->nv;
-    out->src = malloc(sizeof(int) * (cap > 0 ? cap : 1));
-    out->uv = malloc(sizeof(double) * 2 * (cap > 0 ? cap : 1));
+    out->src = mem_alloc(sizeof(int) * (cap > 0 ? cap : 1));
+    out->uv = mem_alloc(sizeof(double) * 2 * (cap > 0 ? cap : 1));
     if (!start || !corner || !out->src || !out->uv) {
-        free(start); free(corner); seam_split_free(out);
+        mem_free(start); mem_free(corner); seam_split_free(out);
         return error_nomem("split vertices");
     }
     for (size_t c = 0; c < nc; c++) start[m->tri[c] + 1]++;
     for (int v = 0; v < m->nv; v++) start[v + 1] += start[v];
     {
-        int *fill = malloc(sizeof(int) * ((size_t)m->nv + 1));
-        if (!fill) { free(start); free(corner); seam_split_free(out); return error_nomem("split vertices"); }
+        int *fill = mem_alloc(sizeof(int) * ((size_t)m->nv + 1));
+        if (!fill) { mem_free(start); mem_free(corner); seam_split_free(out); return error_nomem("split vertices"); }
         memcpy(fill, start, sizeof(int) * ((size_t)m->nv + 1));
         for (size_t c = 0; c < nc; c++) corner[fill[m->tri[c]]++] = (int)c;
-        free(fill);
+        mem_free(fill);
     }
     int n = 0;
     for (int v = 0; v < m->nv; v++) {
@@ -72,8 +73,8 @@ neuv_status seam_split_vertices(const neuv_mesh *m, seam_split *out)
             out->tri[c] = found;
         }
     }
-    free(start);
-    free(corner);
+    mem_free(start);
+    mem_free(corner);
     out->nv = n;
     return NEUV_OK;
 }

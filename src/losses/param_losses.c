@@ -5,14 +5,15 @@
 #include <stdlib.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 neuv_status param_corners_build(const int *tri, int nf, param_corners *c)
 {
     c->nf = nf;
     size_t n = (size_t)3 * (size_t)(nf > 0 ? nf : 1);
-    c->p0 = malloc(n * sizeof(int));
-    c->p1 = malloc(n * sizeof(int));
-    c->p2 = malloc(n * sizeof(int));
+    c->p0 = mem_alloc(n * sizeof(int));
+    c->p1 = mem_alloc(n * sizeof(int));
+    c->p2 = mem_alloc(n * sizeof(int));
     if (!c->p0 || !c->p1 || !c->p2) {
         param_corners_free(c);
         return error_set(NEUV_ERR_NOMEM, "out of memory for %d triangle corners", nf);
@@ -29,7 +30,7 @@ neuv_status param_corners_build(const int *tri, int nf, param_corners *c)
 
 void param_corners_free(param_corners *c)
 {
-    free(c->p0); free(c->p1); free(c->p2);
+    mem_free(c->p0); mem_free(c->p1); mem_free(c->p2);
     c->p0 = c->p1 = c->p2 = NULL;
     c->nf = 0;
 }

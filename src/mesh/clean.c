@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/union_find.h"
 #include "mesh/edge_faces.h"
 
@@ -38,9 +39,9 @@ static size_t table_size(size_t n)
 static int weld(neuv_mesh *m, int *rep)
 {
     size_t cap = table_size((size_t)m->nv);
-    int *table = malloc(sizeof(int) * cap);
-    int *remap = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
-    if (!table || !remap) { free(table); free(remap); return -1; }
+    int *table = mem_alloc(sizeof(int) * cap);
+    int *remap = mem_alloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+    if (!table || !remap) { mem_free(table); mem_free(remap); return -1; }
     for (size_t i = 0; i < cap; i++) table[i] = -1;
     int n = 0;
     for (int v = 0; v < m->nv; v++) {
@@ -66,7 +67,7 @@ static int weld(neuv_mesh *m, int *rep)
     for (size_t c = 0; c < (size_t)m->nf * 3; c++) m->tri[c] = remap[m->tri[c]];
     int removed = m->nv - n;
     m->nv = n;
-    free(table); free(remap);
+    mem_free(table); mem_free(remap);
     return removed;
 }
 
@@ -118,10 +119,10 @@ static void sort3(const int *t, int s[3])
  * face's. Returns 0, -1 on OOM. */
 static int drop_bad_faces(neuv_mesh *m, mesh_clean_report *r)
 {
-    unsigned char *keep = malloc((size_t)(m->nf > 0 ? m->nf : 1));
+    unsigned char *keep = mem_alloc((size_t)(m->nf > 0 ? m->nf : 1));
     size_t cap = table_size((size_t)m->nf);
-    int *table = malloc(sizeof(int) * cap);
-    if (!keep || !table) { free(keep); free(table); return -1; }
+    int *table = mem_alloc(sizeof(int) * cap);
+    if (!keep || !table) { mem_free(keep); mem_free(table); return -1; }
     for (size_t i = 0; i < cap; i++) table[i] = -1;
     for (int f = 0; f < m->nf; f++) {
         keep[f] = !is_degenerate(m, f);
@@ -137,7 +138,7 @@ static int drop_bad_faces(neuv_mesh *m, mesh_clean_report *r)
         }
     }
     keep_faces(m, keep);
-    free(keep); free(table);
+    mem_free(keep); mem_free(table);
     return 0;
 }
 
@@ -198,16 +199,16 @@ static int split_round(neuv_mesh *m, int isolate, int count_vertices, int refuse
     }
     if (isolate && nm_edges == 0) { edge_faces_free(&t); return 0; }
     union_find fan, all;
-    unsigned char *isolated = calloc((size_t)m->nf + 1, 1);
-    int *first_root = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+    unsigned char *isolated = mem_calloc((size_t)m->nf + 1, 1);
+    int *first_root = mem_alloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
     if (!isolated || !first_root || uf_init(&fan, nc) != 0) {
-        free(isolated); free(first_root); edge_faces_free(&t);
+        mem_free(isolated); mem_free(first_root); edge_faces_free(&t);
         return -1;
     }
     /* Without non-manifold edges the fans are the same either way. */
     int separate_all = count_vertices && nm_edges > 0;
     if (uf_init(&all, separate_all ? nc : 0) != 0) {
-        free(isolated); free(first_root); uf_free(&fan); edge_faces_free(&t);
+        mem_free(isolated); mem_free(first_root); uf_free(&fan); edge_faces_free(&t);
         return -1;
     }
     if (isolate)
@@ -239,7 +240,7 @@ static int split_round(neuv_mesh *m, int isolate, int count_vertices, int refuse
             if (first_root[v] == -1) first_root[v] = root;
             else if (first_root[v] >= 0 && first_root[v] != root) {
                 if (refuse) {
-                    free(isolated); free(first_root); uf_free(&fan); uf_free(&all);
+                    mem_free(isolated); mem_free(first_root); uf_free(&fan); uf_free(&all);
                     error_set(NEUV_ERR_INPUT, "non-manifold vertex %d (its faces form more than one fan)",
                               rep ? rep[v] : v);
                     return -2;
@@ -254,11 +255,11 @@ static int split_round(neuv_mesh *m, int isolate, int count_vertices, int refuse
 
     /* A fan's vertex: the original for the first fan met in corner order,
      * a new copy for every later one. */
-    int *fan_vertex = malloc(sizeof(int) * (size_t)(nc > 0 ? nc : 1));
-    int *source = malloc(sizeof(int) * (size_t)(nc > 0 ? nc : 1));
-    unsigned char *claimed = calloc((size_t)m->nv + 1, 1);
+    int *fan_vertex = mem_alloc(sizeof(int) * (size_t)(nc > 0 ? nc : 1));
+    int *source = mem_alloc(sizeof(int) * (size_t)(nc > 0 ? nc : 1));
+    unsigned char *claimed = mem_calloc((size_t)m->nv + 1, 1);
     if (!fan_vertex || !source || !claimed) {
-        free(fan_vertex); free(source); free(claimed); free(isolated); free(first_root); uf_free(&fan);
+        mem_free(fan_vertex); mem_free(source); mem_free(claimed); mem_free(isolated); mem_free(first_root); uf_free(&fan);
         return -1;
     }
     int added = 0;
@@ -273,7 +274,7 @@ static int split_round(neuv_mesh *m, int isolate, int count_vertices, int refuse
     }
     int status = nm_edges;
     if (added > 0) {
-        double *pos = realloc(m->pos, sizeof(double) * 3 * (size_t)(m->nv + added));
+        double *pos = mem_realloc(m->pos, sizeof(double) * 3 * (size_t)(m->nv + added));
         if (!pos) status = -1;
         else {
             m->pos = pos;
@@ -282,14 +283,14 @@ static int split_round(neuv_mesh *m, int isolate, int count_vertices, int refuse
             r->split_vertices += added;
         }
     }
-    free(fan_vertex); free(source); free(claimed); free(isolated); free(first_root); uf_free(&fan);
+    mem_free(fan_vertex); mem_free(source); mem_free(claimed); mem_free(isolated); mem_free(first_root); uf_free(&fan);
     return status;
 }
 
 /* Removes vertices no face uses, keeping the order of the rest. Returns 0, -1 on OOM. */
 static int drop_unreferenced(neuv_mesh *m, mesh_clean_report *r)
 {
-    int *remap = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+    int *remap = mem_alloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
     if (!remap) return -1;
     for (int v = 0; v < m->nv; v++) remap[v] = -1;
     for (int c = 0; c < 3 * m->nf; c++) remap[m->tri[c]] = 0;
@@ -303,7 +304,7 @@ static int drop_unreferenced(neuv_mesh *m, mesh_clean_report *r)
     for (int c = 0; c < 3 * m->nf; c++) m->tri[c] = remap[m->tri[c]];
     r->unreferenced_vertices += m->nv - n;
     m->nv = n;
-    free(remap);
+    mem_free(remap);
     return 0;
 }
 
@@ -331,9 +332,9 @@ static int orient(neuv_mesh *m, mesh_clean_report *r)
 {
     edge_faces t;
     if (edge_faces_build(&t, m) != 0) return -1;
-    signed char *flip = malloc((size_t)m->nf + 1);
-    int *queue = malloc(sizeof(int) * ((size_t)m->nf + 1));
-    if (!flip || !queue) { free(flip); free(queue); edge_faces_free(&t); return -1; }
+    signed char *flip = mem_alloc((size_t)m->nf + 1);
+    int *queue = mem_alloc(sizeof(int) * ((size_t)m->nf + 1));
+    if (!flip || !queue) { mem_free(flip); mem_free(queue); edge_faces_free(&t); return -1; }
     memset(flip, -1, (size_t)m->nf + 1);
     for (int seed = 0; seed < m->nf; seed++) {
         if (flip[seed] >= 0) continue;
@@ -378,7 +379,7 @@ static int orient(neuv_mesh *m, mesh_clean_report *r)
         for (int i = 0; i < tail; i++)
             if (flip[queue[i]] ^ invert) { flip_face(m, queue[i]); r->flipped_faces++; }
     }
-    free(flip); free(queue); edge_faces_free(&t);
+    mem_free(flip); mem_free(queue); edge_faces_free(&t);
     return 0;
 }
 
@@ -407,8 +408,8 @@ neuv_status mesh_clean(neuv_mesh *m, const mesh_clean_options *opts, mesh_clean_
 
     /* Work on a copy so that m is untouched when we refuse or run out of memory. */
     neuv_mesh *w = mesh_clone(m);
-    int *rep = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
-    if (!w || !rep) { mesh_free(w); free(rep); return error_nomem("mesh copy"); }
+    int *rep = mem_alloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+    if (!w || !rep) { mesh_free(w); mem_free(rep); return error_nomem("mesh copy"); }
 
     st = NEUV_OK;
     int welded = weld(w, rep);
@@ -430,11 +431,11 @@ neuv_status mesh_clean(neuv_mesh *m, const mesh_clean_options *opts, mesh_clean_
     }
     if (st == NEUV_OK && drop_unreferenced(w, r) != 0) st = error_nomem("vertex table");
     if (st == NEUV_OK && orient(w, r) != 0) st = error_nomem("orientation");
-    free(rep);
+    mem_free(rep);
     if (st != NEUV_OK) { mesh_free(w); return st; }
 
     /* Move the cleaned arrays into m (UV coordinates are unchanged). */
-    free(m->pos); free(m->tri); free(m->tri_uv);
+    mem_free(m->pos); mem_free(m->tri); mem_free(m->tri_uv);
     m->pos = w->pos; m->tri = w->tri; m->tri_uv = w->tri_uv;
     m->nv = w->nv; m->nf = w->nf;
     w->pos = NULL; w->tri = NULL; w->tri_uv = NULL;

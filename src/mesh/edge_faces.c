@@ -3,11 +3,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/mem.h"
 #include "mesh/edge_map.h"
 
 void edge_faces_free(edge_faces *t)
 {
-    free(t->face_edge); free(t->start); free(t->side); free(t->edge_v);
+    mem_free(t->face_edge); mem_free(t->start); mem_free(t->side); mem_free(t->edge_v);
     memset(t, 0, sizeof *t);
 }
 
@@ -16,9 +17,9 @@ int edge_faces_build(edge_faces *t, const neuv_mesh *m)
     memset(t, 0, sizeof *t);
     size_t nc = (size_t)m->nf * 3;
     edge_map map;
-    t->face_edge = malloc(sizeof(int) * (nc + 1));
-    t->edge_v = malloc(sizeof(int) * 2 * (nc + 1));
-    t->side = malloc(sizeof(int) * (nc + 1));
+    t->face_edge = mem_alloc(sizeof(int) * (nc + 1));
+    t->edge_v = mem_alloc(sizeof(int) * 2 * (nc + 1));
+    t->side = mem_alloc(sizeof(int) * (nc + 1));
     if (!t->face_edge || !t->edge_v || !t->side || edge_map_init(&map, nc / 2 + 1) != 0) {
         edge_faces_free(t);
         return -1;
@@ -34,7 +35,7 @@ int edge_faces_build(edge_faces *t, const neuv_mesh *m)
         t->face_edge[c] = *slot;
     }
     edge_map_free(&map);
-    t->start = calloc((size_t)t->ne + 2, sizeof(int));
+    t->start = mem_calloc((size_t)t->ne + 2, sizeof(int));
     if (!t->start) { edge_faces_free(t); return -1; }
     for (size_t c = 0; c < nc; c++)
         if (t->face_edge[c] >= 0) t->start[t->face_edge[c] + 2]++;

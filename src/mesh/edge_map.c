@@ -2,6 +2,8 @@
 
 #include <stdlib.h>
 
+#include "core/mem.h"
+
 static uint64_t edge_key(int a, int b) { return ((uint64_t)(uint32_t)a << 32) | (uint32_t)b; }
 
 /* A 64-bit mixer (splitmix64 finalizer) so that neighbouring keys from a
@@ -16,9 +18,9 @@ static size_t edge_hash(uint64_t k, size_t mask)
 
 static int edge_map_alloc(edge_map *e, size_t cap)
 {
-    e->keys = malloc(sizeof(uint64_t) * cap);
-    e->vals = malloc(sizeof(int) * cap);
-    if (!e->keys || !e->vals) { free(e->keys); free(e->vals); e->keys = NULL; e->vals = NULL; return -1; }
+    e->keys = mem_alloc(sizeof(uint64_t) * cap);
+    e->vals = mem_alloc(sizeof(int) * cap);
+    if (!e->keys || !e->vals) { mem_free(e->keys); mem_free(e->vals); e->keys = NULL; e->vals = NULL; return -1; }
     for (size_t i = 0; i < cap; i++) e->keys[i] = EDGE_MAP_EMPTY;
     e->cap = cap;
     e->count = 0;
@@ -34,7 +36,7 @@ int edge_map_init(edge_map *e, size_t expected)
 
 void edge_map_free(edge_map *e)
 {
-    free(e->keys); free(e->vals);
+    mem_free(e->keys); mem_free(e->vals);
     e->keys = NULL; e->vals = NULL;
     e->cap = e->count = 0;
 }

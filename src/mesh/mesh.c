@@ -5,20 +5,21 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 neuv_mesh *mesh_create(int nv, int nf, int nuv)
 {
-    neuv_mesh *m = calloc(1, sizeof *m);
+    neuv_mesh *m = mem_calloc(1, sizeof *m);
     if (!m) return NULL;
     m->nv = nv;
     m->nf = nf;
-    m->pos = calloc((size_t)(nv > 0 ? nv : 1) * 3, sizeof(double));
-    m->tri = calloc((size_t)(nf > 0 ? nf : 1) * 3, sizeof(int));
+    m->pos = mem_calloc((size_t)(nv > 0 ? nv : 1) * 3, sizeof(double));
+    m->tri = mem_calloc((size_t)(nf > 0 ? nf : 1) * 3, sizeof(int));
     if (!m->pos || !m->tri) { mesh_free(m); return NULL; }
     if (nuv > 0) {
         m->nuv = nuv;
-        m->uv = calloc((size_t)nuv * 2, sizeof(double));
-        m->tri_uv = calloc((size_t)(nf > 0 ? nf : 1) * 3, sizeof(int));
+        m->uv = mem_calloc((size_t)nuv * 2, sizeof(double));
+        m->tri_uv = mem_calloc((size_t)(nf > 0 ? nf : 1) * 3, sizeof(int));
         if (!m->uv || !m->tri_uv) { mesh_free(m); return NULL; }
     }
     return m;
@@ -39,13 +40,13 @@ neuv_mesh *mesh_clone(const neuv_mesh *m)
 
 neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_uv)
 {
-    free(m->uv); free(m->tri_uv);
+    mem_free(m->uv); mem_free(m->tri_uv);
     m->uv = NULL; m->tri_uv = NULL; m->nuv = 0;
     if (nuv <= 0) return NEUV_OK;
-    m->uv = malloc(sizeof(double) * 2 * (size_t)nuv);
-    m->tri_uv = malloc(sizeof(int) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
+    m->uv = mem_alloc(sizeof(double) * 2 * (size_t)nuv);
+    m->tri_uv = mem_alloc(sizeof(int) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
     if (!m->uv || !m->tri_uv) {
-        free(m->uv); free(m->tri_uv); m->uv = NULL; m->tri_uv = NULL;
+        mem_free(m->uv); mem_free(m->tri_uv); m->uv = NULL; m->tri_uv = NULL;
         return error_nomem("UVs");
     }
     m->nuv = nuv;
@@ -57,8 +58,8 @@ neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_
 void mesh_free(neuv_mesh *m)
 {
     if (!m) return;
-    free(m->pos); free(m->tri); free(m->uv); free(m->tri_uv);
-    free(m);
+    mem_free(m->pos); mem_free(m->tri); mem_free(m->uv); mem_free(m->tri_uv);
+    mem_free(m);
 }
 
 void neuv_mesh_free(neuv_mesh *m) { mesh_free(m); }

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/mem.h"
 #include "mesh/edge_map.h"
 
 #ifndef M_PI
@@ -52,8 +53,8 @@ neuv_mesh *shape_icosphere(int level, double radius)
     int nf_final = 20, nv_final = 12;
     for (int l = 0; l < level; l++) { nv_final += 3 * nf_final / 2; nf_final *= 4; }
     neuv_mesh *m = mesh_create(nv_final, nf_final, 0);
-    int *next = malloc(sizeof(int) * 3 * (size_t)nf_final);
-    if (!m || !next) { mesh_free(m); free(next); return NULL; }
+    int *next = mem_alloc(sizeof(int) * 3 * (size_t)nf_final);
+    if (!m || !next) { mesh_free(m); mem_free(next); return NULL; }
 
     /* Icosahedron: the 12 cyclic permutations of (0, ±1, ±t). */
     const double t = (1.0 + sqrt(5.0)) / 2.0;
@@ -73,12 +74,12 @@ neuv_mesh *shape_icosphere(int level, double radius)
     int nv = 12, nf = 20;
     for (int l = 0; l < level; l++) {
         edge_map mid;
-        if (edge_map_init(&mid, (size_t)nf * 3 / 2) != 0) { mesh_free(m); free(next); return NULL; }
+        if (edge_map_init(&mid, (size_t)nf * 3 / 2) != 0) { mesh_free(m); mem_free(next); return NULL; }
         for (int f = 0; f < nf; f++) {
             int a = m->tri[3 * f], b = m->tri[3 * f + 1], c = m->tri[3 * f + 2];
             int ab = midpoint(m, &mid, &nv, a, b), bc = midpoint(m, &mid, &nv, b, c),
                 ca = midpoint(m, &mid, &nv, c, a);
-            if (ab < 0 || bc < 0 || ca < 0) { edge_map_free(&mid); mesh_free(m); free(next); return NULL; }
+            if (ab < 0 || bc < 0 || ca < 0) { edge_map_free(&mid); mesh_free(m); mem_free(next); return NULL; }
             int *t4 = next + 12 * f;
             int quad[12] = {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca};
             memcpy(t4, quad, sizeof quad);
@@ -87,7 +88,7 @@ neuv_mesh *shape_icosphere(int level, double radius)
         nf *= 4;
         memcpy(m->tri, next, sizeof(int) * 3 * (size_t)nf);
     }
-    free(next);
+    mem_free(next);
     for (int i = 0; i < 3 * nv; i++) m->pos[i] *= radius;
     return m;
 }
@@ -140,28 +141,28 @@ static neuv_mesh *revolve(const double *rho, const double *z, int n, int slices)
 neuv_mesh *shape_uv_sphere(int slices, int stacks, double radius)
 {
     if (slices < 3 || stacks < 2) return NULL;
-    double *rho = malloc(sizeof(double) * (size_t)(stacks + 1));
-    double *z = malloc(sizeof(double) * (size_t)(stacks + 1));
-    if (!rho || !z) { free(rho); free(z); return NULL; }
+    double *rho = mem_alloc(sizeof(double) * (size_t)(stacks + 1));
+    double *z = mem_alloc(sizeof(double) * (size_t)(stacks + 1));
+    if (!rho || !z) { mem_free(rho); mem_free(z); return NULL; }
     for (int i = 0; i <= stacks; i++) {
         double theta = M_PI * i / stacks;
         rho[i] = (i == 0 || i == stacks) ? 0.0 : radius * sin(theta);
         z[i] = radius * cos(theta);
     }
     neuv_mesh *m = revolve(rho, z, stacks + 1, slices);
-    free(rho); free(z);
+    mem_free(rho); mem_free(z);
     return m;
 }
 
 neuv_mesh *shape_cylinder(double r, double h, int slices, int stacks)
 {
     if (slices < 3 || stacks < 1 || !(r > 0)) return NULL;
-    double *rho = malloc(sizeof(double) * (size_t)(stacks + 1));
-    double *z = malloc(sizeof(double) * (size_t)(stacks + 1));
-    if (!rho || !z) { free(rho); free(z); return NULL; }
+    double *rho = mem_alloc(sizeof(double) * (size_t)(stacks + 1));
+    double *z = mem_alloc(sizeof(double) * (size_t)(stacks + 1));
+    if (!rho || !z) { mem_free(rho); mem_free(z); return NULL; }
     for (int i = 0; i <= stacks; i++) { rho[i] = r; z[i] = h / 2 - h * i / stacks; }
     neuv_mesh *m = revolve(rho, z, stacks + 1, slices);
-    free(rho); free(z);
+    mem_free(rho); mem_free(z);
     return m;
 }
 
@@ -172,8 +173,8 @@ neuv_mesh *shape_capsule(double r, double h, int slices, int stacks)
     int bands = (int)ceil(h / (r * M_PI / 2 / stacks));
     if (bands < 1) bands = 1;
     int n = 2 * (stacks + 1) + bands - 1;
-    double *rho = malloc(sizeof(double) * (size_t)n), *z = malloc(sizeof(double) * (size_t)n);
-    if (!rho || !z) { free(rho); free(z); return NULL; }
+    double *rho = mem_alloc(sizeof(double) * (size_t)n), *z = mem_alloc(sizeof(double) * (size_t)n);
+    if (!rho || !z) { mem_free(rho); mem_free(z); return NULL; }
     int k = 0;
     for (int i = 0; i <= stacks; i++) { /* top hemisphere, pole to equator */
         double theta = M_PI / 2 * i / stacks;
@@ -187,7 +188,7 @@ neuv_mesh *shape_capsule(double r, double h, int slices, int stacks)
         z[k++] = -h / 2 - r * cos(theta);
     }
     neuv_mesh *m = revolve(rho, z, n, slices);
-    free(rho); free(z);
+    mem_free(rho); mem_free(z);
     return m;
 }
 
@@ -269,7 +270,7 @@ static neuv_mesh *voxel_boundary(const unsigned char *solid, const int dim[3], d
     #define SOLID(x, y, z) ((x) >= 0 && (y) >= 0 && (z) >= 0 && (x) < X && (y) < Y && (z) < Z && \
                             solid[(x) + X * ((y) + Y * (z))])
     size_t nlat = (size_t)(X + 1) * (Y + 1) * (Z + 1);
-    int *lattice = malloc(sizeof(int) * nlat);
+    int *lattice = mem_alloc(sizeof(int) * nlat);
     if (!lattice) return NULL;
     for (size_t i = 0; i < nlat; i++) lattice[i] = -1;
 
@@ -310,7 +311,7 @@ static neuv_mesh *voxel_boundary(const unsigned char *solid, const int dim[3], d
                 }
         if (pass == 0) {
             m = mesh_create(nv, nf, 0);
-            if (!m) { free(lattice); return NULL; }
+            if (!m) { mem_free(lattice); return NULL; }
             for (int z = 0; z <= Z; z++)
                 for (int y = 0; y <= Y; y++)
                     for (int x = 0; x <= X; x++) {
@@ -320,7 +321,7 @@ static neuv_mesh *voxel_boundary(const unsigned char *solid, const int dim[3], d
         }
     }
     #undef SOLID
-    free(lattice);
+    mem_free(lattice);
     return m;
 }
 
@@ -330,13 +331,13 @@ neuv_mesh *shape_cube(int n)
     /* Only the outer layer of voxels matters for the boundary, but a full
      * block keeps this simple and n stays small in practice. */
     size_t count = (size_t)n * n * n;
-    unsigned char *solid = malloc(count);
+    unsigned char *solid = mem_alloc(count);
     if (!solid) return NULL;
     memset(solid, 1, count);
     int dim[3] = {n, n, n};
     double offset[3] = {-1, -1, -1};
     neuv_mesh *m = voxel_boundary(solid, dim, 2.0 / n, offset);
-    free(solid);
+    mem_free(solid);
     return m;
 }
 
@@ -347,7 +348,7 @@ neuv_mesh *shape_genus2(int n)
      * x in [1,2] and [3,4], y in [1,2]. */
     int dim[3] = {5 * n, 3 * n, n};
     size_t count = (size_t)dim[0] * dim[1] * dim[2];
-    unsigned char *solid = malloc(count);
+    unsigned char *solid = mem_alloc(count);
     if (!solid) return NULL;
     for (int z = 0; z < dim[2]; z++)
         for (int y = 0; y < dim[1]; y++)
@@ -358,6 +359,6 @@ neuv_mesh *shape_genus2(int n)
             }
     double scale = 1.0 / n, offset[3] = {-2.5, -1.5, -0.5};
     neuv_mesh *m = voxel_boundary(solid, dim, scale, offset);
-    free(solid);
+    mem_free(solid);
     return m;
 }

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "core/union_find.h"
 #include "mesh/edge_map.h"
 
@@ -39,16 +40,16 @@ typedef struct subset_edges {
 static void subset_edges_free(subset_edges *s)
 {
     edge_map_free(&s->map);
-    free(s->count); free(s->face0); free(s->face1);
+    mem_free(s->count); mem_free(s->face0); mem_free(s->face1);
 }
 
 static int subset_edges_build(subset_edges *s, const neuv_mesh *m, const int *faces, int nfaces)
 {
     memset(s, 0, sizeof *s);
     size_t cap = (size_t)nfaces * 3 + 1;
-    s->count = malloc(sizeof(int) * cap);
-    s->face0 = malloc(sizeof(int) * cap);
-    s->face1 = malloc(sizeof(int) * cap);
+    s->count = mem_alloc(sizeof(int) * cap);
+    s->face0 = mem_alloc(sizeof(int) * cap);
+    s->face1 = mem_alloc(sizeof(int) * cap);
     if (!s->count || !s->face0 || !s->face1 || edge_map_init(&s->map, cap) != 0) {
         subset_edges_free(s);
         return -1;
@@ -114,7 +115,7 @@ static int next_boundary_edge(const neuv_mesh *m, const subset_edges *s, int f, 
 static int trace_loops(const neuv_mesh *m, const subset_edges *s, const int *faces, int nfaces,
                        int *loop_start, int *loop_vertices)
 {
-    unsigned char *seen = calloc((size_t)s->n + 1, 1);
+    unsigned char *seen = mem_calloc((size_t)s->n + 1, 1);
     if (!seen) return -1;
     int loops = 0, written = 0;
     for (int i = 0; i < nfaces; i++) {
@@ -140,7 +141,7 @@ static int trace_loops(const neuv_mesh *m, const subset_edges *s, const int *fac
         }
     }
     if (loop_start) loop_start[loops] = written;
-    free(seen);
+    mem_free(seen);
     return loops;
 }
 
@@ -181,7 +182,7 @@ neuv_status mesh_faces_topology(const neuv_mesh *m, const int *faces, int nfaces
 /* The faces with face_label == label, or all faces when face_label is NULL. */
 static int *select_faces(const neuv_mesh *m, const int *face_label, int label, int *n)
 {
-    int *faces = malloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
+    int *faces = mem_alloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
     if (!faces) return NULL;
     *n = 0;
     for (int f = 0; f < m->nf; f++)
@@ -196,7 +197,7 @@ neuv_status mesh_subset_topology(const neuv_mesh *m, const int *face_label, int 
     int *faces = select_faces(m, face_label, label, &n);
     if (!faces) return error_nomem("face subset");
     neuv_status st = mesh_faces_topology(m, faces, n, out);
-    free(faces);
+    mem_free(faces);
     return st;
 }
 
@@ -209,12 +210,12 @@ int mesh_faces_boundary_loops(const neuv_mesh *m, const int *faces, int nfaces,
     if (subset_edges_build(&s, m, faces, nfaces) != 0) return -1;
     int boundary_edges = 0;
     for (int e = 0; e < s.n; e++) boundary_edges += s.count[e] == 1;
-    int *verts = malloc(sizeof(int) * (size_t)(boundary_edges + 1));
-    int *start = malloc(sizeof(int) * (size_t)(boundary_edges + 2));
-    if (!verts || !start) { free(verts); free(start); subset_edges_free(&s); return -1; }
+    int *verts = mem_alloc(sizeof(int) * (size_t)(boundary_edges + 1));
+    int *start = mem_alloc(sizeof(int) * (size_t)(boundary_edges + 2));
+    if (!verts || !start) { mem_free(verts); mem_free(start); subset_edges_free(&s); return -1; }
     int loops = trace_loops(m, &s, faces, nfaces, start, verts);
     subset_edges_free(&s);
-    if (loops < 0) { free(verts); free(start); return -1; }
+    if (loops < 0) { mem_free(verts); mem_free(start); return -1; }
     *loop_start = start;
     *loop_vertices = verts;
     return loops;
@@ -227,6 +228,6 @@ int mesh_boundary_loops(const neuv_mesh *m, const int *face_label, int label,
     int *faces = select_faces(m, face_label, label, &n);
     if (!faces) { *loop_start = NULL; *loop_vertices = NULL; return -1; }
     int loops = mesh_faces_boundary_loops(m, faces, n, loop_start, loop_vertices);
-    free(faces);
+    mem_free(faces);
     return loops;
 }

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "core/mem.h"
 #include "mesh/topology.h"
 
 static double uv_area2(const double *uv, const int *t)
@@ -53,15 +54,15 @@ static int loop_crossings(const double *uv, const int *loop, int n)
     int gx = (int)fmin(1024, (hi[0] - lo[0]) / cell + 1), gy = (int)fmin(1024, (hi[1] - lo[1]) / cell + 1);
     double cx = (hi[0] - lo[0]) / gx + 1e-300, cy = (hi[1] - lo[1]) / gy + 1e-300;
     /* Two passes: count entries per cell, then fill. */
-    int *start = calloc((size_t)gx * gy + 1, sizeof(int));
+    int *start = mem_calloc((size_t)gx * gy + 1, sizeof(int));
     if (!start) return -1;
     for (int pass = 0; pass < 2; pass++) {
         int *fill = NULL, *items = NULL;
         if (pass == 1) {
             for (int c = 0; c < gx * gy; c++) start[c + 1] += start[c];
-            fill = malloc(sizeof(int) * (size_t)gx * gy);
-            items = malloc(sizeof(int) * (size_t)(start[gx * gy] > 0 ? start[gx * gy] : 1));
-            if (!fill || !items) { free(fill); free(items); free(start); return -1; }
+            fill = mem_alloc(sizeof(int) * (size_t)gx * gy);
+            items = mem_alloc(sizeof(int) * (size_t)(start[gx * gy] > 0 ? start[gx * gy] : 1));
+            if (!fill || !items) { mem_free(fill); mem_free(items); mem_free(start); return -1; }
             for (int c = 0; c < gx * gy; c++) fill[c] = start[c];
         }
         for (int i = 0; i < n; i++) {
@@ -95,13 +96,13 @@ static int loop_crossings(const double *uv, const int *loop, int n)
                         if (ocy * gx + ocx != c) continue;
                         if (segments_meet(a, b, d0, d1)) crossings++;
                     }
-            free(fill);
-            free(items);
-            free(start);
+            mem_free(fill);
+            mem_free(items);
+            mem_free(start);
             return crossings;
         }
     }
-    free(start);
+    mem_free(start);
     return 0;
 }
 
@@ -130,10 +131,10 @@ int chart_uv_check_run(const neuv_mesh *sub, double *uv, chart_uv_check *out)
     if (nloops < 0) return -1;
     for (int l = 0; l < nloops; l++) {
         int c = loop_crossings(uv, verts + start[l], start[l + 1] - start[l]);
-        if (c < 0) { free(start); free(verts); return -1; }
+        if (c < 0) { mem_free(start); mem_free(verts); return -1; }
         out->boundary_crossings += c;
     }
-    free(start);
-    free(verts);
+    mem_free(start);
+    mem_free(verts);
     return out->flipped == 0 && out->degenerate == 0 && out->boundary_crossings == 0;
 }

@@ -7,6 +7,7 @@
 #include "atlas/uv_charts.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 #include "metrics/uv_overlap.h"
 
@@ -115,7 +116,7 @@ static int uv_equal(const double *a, const double *b)
 static double cut_length(const neuv_mesh *m)
 {
     size_t n = (size_t)m->nf * 3;
-    edge_side *es = malloc(sizeof *es * (n ? n : 1));
+    edge_side *es = mem_alloc(sizeof *es * (n ? n : 1));
     if (!es) return -1;
     for (int f = 0; f < m->nf; f++)
         for (int k = 0; k < 3; k++) {
@@ -144,7 +145,7 @@ static double cut_length(const neuv_mesh *m)
         }
         i = j;
     }
-    free(es);
+    mem_free(es);
     return total;
 }
 
@@ -171,9 +172,9 @@ static neuv_status distortion_metrics(int nf, const face_measure *fm, const unsi
         if (measured[f]) { sum3 += fm[f].area3; sumuv += fabs(fm[f].area_uv); nm++; }
     if (nm == 0) return NEUV_OK;
 
-    double *chart3 = calloc((size_t)nchart * 2, sizeof *chart3);
-    qce_entry *qe = malloc(sizeof *qe * (size_t)nm);
-    if (!chart3 || !qe) { free(chart3); free(qe); return error_nomem("UV metrics"); }
+    double *chart3 = mem_calloc((size_t)nchart * 2, sizeof *chart3);
+    qce_entry *qe = mem_alloc(sizeof *qe * (size_t)nm);
+    if (!chart3 || !qe) { mem_free(chart3); mem_free(qe); return error_nomem("UV metrics"); }
     double *chartuv = chart3 + nchart;
     for (int f = 0; f < nf; f++)
         if (measured[f]) { chart3[chart[f]] += fm[f].area3; chartuv[chart[f]] += fabs(fm[f].area_uv); }
@@ -221,8 +222,8 @@ static neuv_status distortion_metrics(int nf, const face_measure *fm, const unsi
     out->qce_p95 = qe[nm - 1].qce;
     for (int i = 0; i < nm; i++)
         if (qe[i].weight >= target) { out->qce_p95 = qe[i].qce; break; }
-    free(chart3);
-    free(qe);
+    mem_free(chart3);
+    mem_free(qe);
     return NEUV_OK;
 }
 
@@ -243,11 +244,11 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
     }
     mean3 /= m->nf;
     neuv_mesh sub = *m; /* the valid faces, sharing positions and UVs with m */
-    sub.tri = malloc(sizeof *sub.tri * 3 * (size_t)m->nf);
-    sub.tri_uv = malloc(sizeof *sub.tri_uv * 3 * (size_t)m->nf);
-    face_measure *fm = malloc(sizeof *fm * (size_t)m->nf);
-    unsigned char *measured = malloc((size_t)m->nf);
-    int *chart = malloc(sizeof *chart * (size_t)m->nf);
+    sub.tri = mem_alloc(sizeof *sub.tri * 3 * (size_t)m->nf);
+    sub.tri_uv = mem_alloc(sizeof *sub.tri_uv * 3 * (size_t)m->nf);
+    face_measure *fm = mem_alloc(sizeof *fm * (size_t)m->nf);
+    unsigned char *measured = mem_alloc((size_t)m->nf);
+    int *chart = mem_alloc(sizeof *chart * (size_t)m->nf);
     neuv_status st = NEUV_OK;
     if (!sub.tri || !sub.tri_uv || !fm || !measured || !chart) { st = error_nomem("UV metrics"); goto done; }
     int nvalid = 0;
@@ -287,13 +288,13 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
     if (st != NEUV_OK) goto done;
 
     /* Flips against each chart's 3D-area-weighted majority orientation. */
-    double *vote = calloc(nchart > 0 ? (size_t)nchart : 1, sizeof *vote);
+    double *vote = mem_calloc(nchart > 0 ? (size_t)nchart : 1, sizeof *vote);
     if (!vote) { st = error_nomem("UV metrics"); goto done; }
     for (int f = 0; f < nvalid; f++)
         if (measured[f]) vote[chart[f]] += fm[f].area_uv > 0 ? fm[f].area3 : -fm[f].area3;
     for (int f = 0; f < nvalid; f++)
         if (measured[f]) out->flipped += (fm[f].area_uv > 0) != (vote[chart[f]] >= 0);
-    free(vote);
+    mem_free(vote);
 
     uv_coverage cov;
     double t0 = now_seconds();
@@ -316,11 +317,11 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
     out->seam_length = cut / sqrt(sum3);
 
 done:
-    free(sub.tri);
-    free(sub.tri_uv);
-    free(fm);
-    free(measured);
-    free(chart);
+    mem_free(sub.tri);
+    mem_free(sub.tri_uv);
+    mem_free(fm);
+    mem_free(measured);
+    mem_free(chart);
     return st;
 }
 

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 /* Rows per sweep of the difference buffer (32 x 2049 x 4 bytes = 256 KiB). */
 #define RASTER_BAND 32
@@ -124,25 +125,25 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
     if (width < 1) width = 1;
     if (height < 1) height = 1;
     /* Row range of each drawn face (empty when not drawn). */
-    int *rows = malloc(sizeof *rows * 2 * (size_t)(nf > 0 ? nf : 1));
+    int *rows = mem_alloc(sizeof *rows * 2 * (size_t)(nf > 0 ? nf : 1));
     /* Coverage is counted through per-row difference arrays: +1 where a
      * triangle's span starts, -1 after it ends. The cost is the number of rows
      * a triangle spans, not its pixels, so maps that stack many faces on the
      * same region (every face on the unit square) stay fast. The raster is
      * swept in bands of rows small enough to stay in cache. */
     size_t stride = (size_t)width + 1;
-    int32_t *diff = calloc(stride * RASTER_BAND, sizeof *diff);
+    int32_t *diff = mem_calloc(stride * RASTER_BAND, sizeof *diff);
     int nbands = (height + RASTER_BAND - 1) / RASTER_BAND;
     /* Faces by the band of their first row (counting sort), and the faces
      * that reach the band being drawn: each band visits only its own faces,
      * so the sweep costs the bands each face spans, not bands times faces
      * (a 1.4M-face atlas at 2048 px visited every face 64 times per test). */
-    int *band_first = calloc((size_t)nbands + 1, sizeof *band_first);
-    int *fill = malloc(sizeof *fill * (size_t)nbands);
-    int *by_band = malloc(sizeof *by_band * (size_t)(nf > 0 ? nf : 1));
-    int *active = malloc(sizeof *active * (size_t)(nf > 0 ? nf : 1));
+    int *band_first = mem_calloc((size_t)nbands + 1, sizeof *band_first);
+    int *fill = mem_alloc(sizeof *fill * (size_t)nbands);
+    int *by_band = mem_alloc(sizeof *by_band * (size_t)(nf > 0 ? nf : 1));
+    int *active = mem_alloc(sizeof *active * (size_t)(nf > 0 ? nf : 1));
     if (!rows || !diff || !band_first || !fill || !by_band || !active) {
-        free(rows); free(diff); free(band_first); free(fill); free(by_band); free(active);
+        mem_free(rows); mem_free(diff); mem_free(band_first); mem_free(fill); mem_free(by_band); mem_free(active);
         return error_nomem("overlap raster");
     }
     for (int f = 0; f < nf; f++) {
@@ -207,7 +208,7 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
             }
         }
     }
-    free(rows); free(diff); free(band_first); free(fill); free(by_band); free(active);
+    mem_free(rows); mem_free(diff); mem_free(band_first); mem_free(fill); mem_free(by_band); mem_free(active);
     return NEUV_OK;
 }
 
@@ -249,7 +250,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     if (width < 1) width = 1;
     if (height < 1) height = 1;
     size_t cap = 4 * (size_t)(nf > 0 ? nf : 1), n = 0;
-    chart_span_px *sp = malloc(sizeof *sp * cap);
+    chart_span_px *sp = mem_alloc(sizeof *sp * cap);
     if (!sp) return error_nomem("overlap raster");
     for (int f = 0; f < nf; f++) {
         raster_edge e[3];
@@ -263,8 +264,8 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
             for (int k = 0; k < 3 && span_lo <= span_hi; k++) edge_clip_span(&e[k], j + 0.5, &span_lo, &span_hi);
             if (span_lo > span_hi) continue;
             if (n == cap) {
-                chart_span_px *g = realloc(sp, sizeof *sp * cap * 2);
-                if (!g) { free(sp); return error_nomem("overlap raster"); }
+                chart_span_px *g = mem_realloc(sp, sizeof *sp * cap * 2);
+                if (!g) { mem_free(sp); return error_nomem("overlap raster"); }
                 sp = g;
                 cap *= 2;
             }
@@ -273,13 +274,13 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     }
     /* By row (counting sort); then each row is painted with chart ids, and a
      * pixel centre painted by another chart gives a pair. */
-    int *row_start = calloc((size_t)height + 1, sizeof *row_start);
-    chart_span_px *sorted = malloc(sizeof *sorted * (n > 0 ? n : 1));
-    int *owner = malloc(sizeof *owner * (size_t)width);
+    int *row_start = mem_calloc((size_t)height + 1, sizeof *row_start);
+    chart_span_px *sorted = mem_alloc(sizeof *sorted * (n > 0 ? n : 1));
+    int *owner = mem_alloc(sizeof *owner * (size_t)width);
     size_t kcap = 64, nk = 0;
-    uint64_t *keys = malloc(sizeof *keys * kcap);
+    uint64_t *keys = mem_alloc(sizeof *keys * kcap);
     if (!row_start || !sorted || !owner || !keys) {
-        free(sp); free(row_start); free(sorted); free(owner); free(keys);
+        mem_free(sp); mem_free(row_start); mem_free(sorted); mem_free(owner); mem_free(keys);
         return error_nomem("overlap raster");
     }
     for (size_t i = 0; i < n; i++) row_start[sp[i].row + 1]++;
@@ -287,7 +288,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     for (size_t i = 0; i < n; i++) sorted[row_start[sp[i].row]++] = sp[i];
     for (int j = height; j > 0; j--) row_start[j] = row_start[j - 1];
     row_start[0] = 0;
-    free(sp);
+    mem_free(sp);
     sp = sorted;
     uint64_t last = UINT64_MAX;
     for (int j = 0; j < height; j++) {
@@ -303,8 +304,8 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
                 uint64_t key = (uint64_t)(uint32_t)p << 32 | (uint32_t)q;
                 if (key == last) continue;
                 if (nk == kcap) {
-                    uint64_t *g = realloc(keys, sizeof *keys * kcap * 2);
-                    if (!g) { free(sp); free(owner); free(keys); return error_nomem("overlap raster"); }
+                    uint64_t *g = mem_realloc(keys, sizeof *keys * kcap * 2);
+                    if (!g) { mem_free(sp); mem_free(owner); mem_free(keys); return error_nomem("overlap raster"); }
                     keys = g;
                     kcap *= 2;
                 }
@@ -312,19 +313,19 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
             }
         }
     }
-    free(row_start);
-    free(owner);
+    mem_free(row_start);
+    mem_free(owner);
     qsort(keys, nk, sizeof *keys, key_order);
     size_t nu = 0;
     for (size_t k = 0; k < nk; k++)
         if (nu == 0 || keys[k] != keys[nu - 1]) keys[nu++] = keys[k];
-    int *pairs = malloc(sizeof *pairs * 2 * (nu > 0 ? nu : 1));
-    if (!pairs) { free(sp); free(keys); return error_nomem("overlap raster"); }
+    int *pairs = mem_alloc(sizeof *pairs * 2 * (nu > 0 ? nu : 1));
+    if (!pairs) { mem_free(sp); mem_free(keys); return error_nomem("overlap raster"); }
     for (size_t k = 0; k < nu; k++) {
         pairs[2 * k] = (int)(keys[k] >> 32);
         pairs[2 * k + 1] = (int)(keys[k] & 0xffffffffu);
     }
-    free(sp); free(keys);
+    mem_free(sp); mem_free(keys);
     *pairs_out = pairs;
     *n_pairs = (int)nu;
     return NEUV_OK;

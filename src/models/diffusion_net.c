@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "core/rng.h"
 
 /* nn's view of a geometry operator. */
@@ -24,7 +25,7 @@ neuv_status diffusion_net_create(diffusion_net *net, const diffusion_net_config 
                          cfg ? cfg->in : 0, cfg ? cfg->width : 0, cfg ? cfg->out : 0, cfg ? cfg->blocks : 0);
     net->cfg = *cfg;
     int C = cfg->width;
-    net->block = calloc((size_t)cfg->blocks, sizeof *net->block);
+    net->block = mem_calloc((size_t)cfg->blocks, sizeof *net->block);
     if (!net->block) return error_nomem("DiffusionNet blocks");
     rng r;
     rng_seed(&r, cfg->seed);
@@ -35,16 +36,16 @@ neuv_status diffusion_net_create(diffusion_net *net, const diffusion_net_config 
     for (int b = 0; b < cfg->blocks; b++) {
         diffusion_net_block *B = &net->block[b];
         snprintf(name, sizeof name, "%s.block%d.time", prefix, b);
-        if (!(B->time = nn_params_add(params, 1, C, name))) { st = NEUV_ERR_INPUT; goto fail; }
+        if (!(B->time = nn_params_add(params, 1, C, name))) { st = error_last(); goto fail; }
         for (int c = 0; c < C; c++)
             B->time->data[c] = (float)(1e-4 * pow(1e3, C > 1 ? (double)c / (C - 1) : 0.5));
         /* Rotations start near the identity (real part I plus noise), so the
          * first features are the gradient magnitudes |∇h|², the rotation-free
          * invariant, and learning moves away from it. */
         snprintf(name, sizeof name, "%s.block%d.rot_re", prefix, b);
-        if (!(B->rot_re = nn_params_add(params, C, C, name))) { st = NEUV_ERR_INPUT; goto fail; }
+        if (!(B->rot_re = nn_params_add(params, C, C, name))) { st = error_last(); goto fail; }
         snprintf(name, sizeof name, "%s.block%d.rot_im", prefix, b);
-        if (!(B->rot_im = nn_params_add(params, C, C, name))) { st = NEUV_ERR_INPUT; goto fail; }
+        if (!(B->rot_im = nn_params_add(params, C, C, name))) { st = error_last(); goto fail; }
         double bound = 1.0 / sqrt((double)C);
         for (int i = 0; i < C * C; i++) {
             B->rot_re->data[i] = (float)((2 * rng_uniform(&r) - 1) * bound);
@@ -66,17 +67,17 @@ fail:
 void diffusion_net_free(diffusion_net *net)
 {
     if (!net) return;
-    free(net->block);
+    mem_free(net->block);
     net->block = NULL;
 }
 
 void diffusion_net_geometry_free(diffusion_net_geometry *g)
 {
     if (!g) return;
-    free(g->evecs);
-    free(g->neg_evals);
-    free(g->mass);
-    free(g->face_vertex);
+    mem_free(g->evecs);
+    mem_free(g->neg_evals);
+    mem_free(g->mass);
+    mem_free(g->face_vertex);
     nn_sparse_free(&g->grad_x);
     nn_sparse_free(&g->grad_y);
     memset(g, 0, sizeof *g);
@@ -97,10 +98,10 @@ neuv_status diffusion_net_geometry_create(const neuv_mesh *m, const operators *o
     double area = 0;
     for (int v = 0; v < nv; v++) area += ops->mass[v];
     if (!(area > 0)) return error_set(NEUV_ERR_INPUT, "DiffusionNet: mesh has zero total area");
-    g->evecs = malloc(sizeof(float) * (size_t)nv * k);
-    g->neg_evals = malloc(sizeof(float) * (size_t)k);
-    g->mass = malloc(sizeof(float) * (size_t)nv);
-    g->face_vertex = malloc(sizeof(int) * 3 * (size_t)m->nf);
+    g->evecs = mem_alloc(sizeof(float) * (size_t)nv * k);
+    g->neg_evals = mem_alloc(sizeof(float) * (size_t)k);
+    g->mass = mem_alloc(sizeof(float) * (size_t)nv);
+    g->face_vertex = mem_alloc(sizeof(int) * 3 * (size_t)m->nf);
     if (!g->evecs || !g->neg_evals || !g->mass || !g->face_vertex) {
         diffusion_net_geometry_free(g);
         return error_nomem("DiffusionNet operators");
@@ -191,7 +192,7 @@ neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *op
     if (f == DIFFUSION_NET_HKS) {
         if (!ops || !ops->hks || ops->n_hks < 1 || ops->nv != nv)
             return error_set(NEUV_ERR_INPUT, "DiffusionNet: no heat kernel signatures in the operators");
-        float *x = malloc(sizeof(float) * (size_t)nv * ops->n_hks);
+        float *x = mem_alloc(sizeof(float) * (size_t)nv * ops->n_hks);
         if (!x) return error_nomem("HKS features");
         for (size_t i = 0; i < (size_t)nv * ops->n_hks; i++) x[i] = (float)ops->hks[i];
         *out = x;
@@ -214,7 +215,7 @@ neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *op
         if (q > r) r = q;
     }
     r = r > 0 ? 1.0 / sqrt(r) : 1.0;
-    float *x = malloc(sizeof(float) * (size_t)nv * 3);
+    float *x = mem_alloc(sizeof(float) * (size_t)nv * 3);
     if (!x) return error_nomem("xyz features");
     for (int v = 0; v < nv; v++)
         for (int d = 0; d < 3; d++) x[3 * v + d] = (float)((m->pos[3 * v + d] - c[d]) * r);

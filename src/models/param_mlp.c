@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "core/rng.h"
 
 neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, int depth, float slope,
@@ -27,7 +28,7 @@ neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, 
     }
     snprintf(name, sizeof name, "%s.0.b", prefix);
     m->b0 = nn_params_add(params, 1, w0, name);
-    if (!m->w_x || !m->b0 || (psi > 0 && !m->w_psi)) return NEUV_ERR_NOMEM;
+    if (!m->w_x || !m->b0 || (psi > 0 && !m->w_psi)) return error_last();
     /* One bound for both blocks: they are one layer of fan-in in + psi. */
     int fan_in = in + psi;
     double bound = depth > 1 ? sqrt(6.0 / fan_in) : sqrt(6.0 / (fan_in + out));
@@ -35,7 +36,7 @@ neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, 
     for (long i = 0; psi > 0 && i < (long)psi * w0; i++)
         m->w_psi->data[i] = (float)((2 * rng_uniform(r) - 1) * bound);
     if (depth > 1) {
-        m->rest = calloc((size_t)(depth - 1), sizeof *m->rest);
+        m->rest = mem_calloc((size_t)(depth - 1), sizeof *m->rest);
         if (!m->rest) return error_nomem("MLP layers");
         for (int l = 1; l < depth; l++) {
             int last = l == depth - 1;
@@ -50,7 +51,7 @@ neuv_status param_mlp_create(param_mlp *m, int in, int psi, int width, int out, 
 
 void param_mlp_free(param_mlp *m)
 {
-    free(m->rest);
+    mem_free(m->rest);
     m->rest = NULL;
 }
 

@@ -9,6 +9,7 @@
 #include "charts/charts.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/rng.h"
 #include "core/timer.h"
 #include "flatten/lscm.h"
@@ -104,11 +105,11 @@ typedef struct train_data {
 
 static void train_data_free(train_data *d)
 {
-    free(d->vmesh); free(d->vchart); free(d->x); free(d->tri); free(d->fmesh); free(d->fchart);
-    free(d->fcum); param_corners_free(&d->corners); free(d->cos3d); free(d->area3d);
-    free(d->frame_inv); free(d->conf_w); free(d->target);
-    geodesic_pairs_free(&d->pairs); free(d->feat); free(d->psi); free(d->center); free(d->scale); free(d->rot);
-    free(d->shift); free(d->mul);
+    mem_free(d->vmesh); mem_free(d->vchart); mem_free(d->x); mem_free(d->tri); mem_free(d->fmesh); mem_free(d->fchart);
+    mem_free(d->fcum); param_corners_free(&d->corners); mem_free(d->cos3d); mem_free(d->area3d);
+    mem_free(d->frame_inv); mem_free(d->conf_w); mem_free(d->target);
+    geodesic_pairs_free(&d->pairs); mem_free(d->feat); mem_free(d->psi); mem_free(d->center); mem_free(d->scale); mem_free(d->rot);
+    mem_free(d->shift); mem_free(d->mul);
     memset(d, 0, sizeof *d);
 }
 
@@ -116,11 +117,11 @@ static neuv_status pairs_append(geodesic_pairs *p, int i, int j, double dist)
 {
     if (p->n == p->cap) {
         size_t cap = p->cap ? 2 * p->cap : 1024;
-        int *ni = realloc(p->i, cap * sizeof(int));
+        int *ni = mem_realloc(p->i, cap * sizeof(int));
         if (ni) p->i = ni;
-        int *nj = realloc(p->j, cap * sizeof(int));
+        int *nj = mem_realloc(p->j, cap * sizeof(int));
         if (nj) p->j = nj;
-        double *nd = realloc(p->d, cap * sizeof(double));
+        double *nd = mem_realloc(p->d, cap * sizeof(double));
         if (nd) p->d = nd;
         if (!ni || !nj || !nd) return error_nomem("geodesic pairs");
         p->cap = cap;
@@ -133,7 +134,7 @@ static neuv_status pairs_append(geodesic_pairs *p, int i, int j, double dist)
 /* Vertex normals (area-weighted face normals), for the feature-free ψ. */
 static neuv_status vertex_normals(const neuv_mesh *m, double **out)
 {
-    double *n = calloc((size_t)m->nv * 3, sizeof(double));
+    double *n = mem_calloc((size_t)m->nv * 3, sizeof(double));
     if (!n) return error_nomem("vertex normals");
     for (int f = 0; f < m->nf; f++) {
         double fn[3], a = mesh_face_area(m, f);
@@ -200,8 +201,8 @@ static neuv_status chart_lscm_target(const neuv_mesh *sub, const double cen[3], 
                                      float *target)
 {
     int n = sub->nv;
-    double *uv = malloc(sizeof(double) * 2 * (size_t)n), *pj = malloc(sizeof(double) * 2 * (size_t)n);
-    if (!uv || !pj) { free(uv); free(pj); return error_nomem("warm-start target"); }
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)n), *pj = mem_alloc(sizeof(double) * 2 * (size_t)n);
+    if (!uv || !pj) { mem_free(uv); mem_free(pj); return error_nomem("warm-start target"); }
     for (int v = 0; v < n; v++) {
         const double *p = sub->pos + 3 * v;
         double d0 = p[0] - cen[0], d1 = p[1] - cen[1], d2 = p[2] - cen[2];
@@ -209,7 +210,7 @@ static neuv_status chart_lscm_target(const neuv_mesh *sub, const double cen[3], 
         pj[2 * v + 1] = scale * (R[3] * d0 + R[4] * d1 + R[5] * d2);
     }
     neuv_status s = lscm(sub, uv);
-    if (s == NEUV_ERR_NOMEM) { free(uv); free(pj); return s; }
+    if (s == NEUV_ERR_NOMEM) { mem_free(uv); mem_free(pj); return s; }
     if (s != NEUV_OK) memcpy(uv, pj, sizeof(double) * 2 * (size_t)n);
     double a3 = 0, auv = 0;
     for (int f = 0; f < sub->nf; f++) {
@@ -245,7 +246,7 @@ static neuv_status chart_lscm_target(const neuv_mesh *sub, const double cen[3], 
         target[2 * v] = (float)(best_c * u0 - best_s * u1 + mp[0]);
         target[2 * v + 1] = (float)(best_s * u0 + best_c * u1 + mp[1]);
     }
-    free(uv); free(pj);
+    mem_free(uv); mem_free(pj);
     return NEUV_OK;
 }
 
@@ -279,7 +280,7 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
         if (r2 > rmax) rmax = r2;
     }
     rmax = sqrt(rmax);
-    dist = malloc((size_t)sub->nv * sizeof(double));
+    dist = mem_alloc((size_t)sub->nv * sizeof(double));
     if (!dist) { s = error_nomem("chart distances"); goto done; }
     s = heat_geodesics_create(sub, 1.0, &hg);
     if (s != NEUV_OK) goto done;
@@ -324,7 +325,7 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
 done:
     geodesic_pairs_free(&pp);
     heat_geodesics_free(hg);
-    free(dist); free(vmap); free(fmap);
+    mem_free(dist); mem_free(vmap); mem_free(fmap);
     mesh_free(sub);
     return s;
 }
@@ -340,8 +341,8 @@ done:
  * stuck at 1.1). A column that does not vary (one chart) becomes 0. */
 static neuv_status psi_standardize(float *rows, long n, int dim, train_data *d)
 {
-    d->shift = malloc(sizeof(double) * (size_t)dim);
-    d->mul = malloc(sizeof(double) * (size_t)dim);
+    d->shift = mem_alloc(sizeof(double) * (size_t)dim);
+    d->mul = mem_alloc(sizeof(double) * (size_t)dim);
     if (!d->shift || !d->mul) return error_nomem("psi standardization");
     double inv = 1.0 / sqrt((double)dim);
     for (int k = 0; k < dim; k++) {
@@ -381,8 +382,8 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
     }
     /* The per-vertex rows first (also the source of the pooled code). */
     int pd = feat ? dim : 6;
-    float *rows = malloc((size_t)d->nv * (size_t)pd * sizeof(float));
-    if (!rows) { free(vn); return error_nomem("psi rows"); }
+    float *rows = mem_alloc((size_t)d->nv * (size_t)pd * sizeof(float));
+    if (!rows) { mem_free(vn); return error_nomem("psi rows"); }
     for (int v = 0; v < d->nv; v++) {
         int mv = d->vmesh[v];
         float *r = rows + (size_t)v * pd;
@@ -393,7 +394,7 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
                 r[3 + q] = (float)vn[3 * mv + q];
             }
     }
-    free(vn);
+    mem_free(vn);
     if (mode == PARAM_PSI_PER_VERTEX) {
         d->feat = rows;
         d->psi_dim = pd;
@@ -402,11 +403,11 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
     /* Pooled: features → [mean, max]; no features → [centroid, mean normal]
      * (the centroid and normal are themselves means, a max adds nothing). */
     int od = feat ? 2 * dim : 6;
-    d->psi = calloc((size_t)d->n_charts * (size_t)od, sizeof(float));
-    int *cnt = calloc((size_t)d->n_charts, sizeof(int));
-    if (!d->psi || !cnt) { free(rows); free(cnt); return error_nomem("psi"); }
-    double *acc = calloc((size_t)d->n_charts * (size_t)pd, sizeof(double));
-    if (!acc) { free(rows); free(cnt); return error_nomem("psi"); }
+    d->psi = mem_calloc((size_t)d->n_charts * (size_t)od, sizeof(float));
+    int *cnt = mem_calloc((size_t)d->n_charts, sizeof(int));
+    if (!d->psi || !cnt) { mem_free(rows); mem_free(cnt); return error_nomem("psi"); }
+    double *acc = mem_calloc((size_t)d->n_charts * (size_t)pd, sizeof(double));
+    if (!acc) { mem_free(rows); mem_free(cnt); return error_nomem("psi"); }
     for (int v = 0; v < d->nv; v++) {
         int c = d->vchart[v];
         const float *r = rows + (size_t)v * pd;
@@ -420,7 +421,7 @@ static neuv_status build_psi(const neuv_mesh *m, const float *feat, int dim, par
     for (int c = 0; c < d->n_charts; c++)
         for (int k = 0; k < pd; k++)
             d->psi[(size_t)c * od + k] = (float)(acc[(size_t)c * pd + k] / (cnt[c] ? cnt[c] : 1));
-    free(acc); free(cnt); free(rows);
+    mem_free(acc); mem_free(cnt); mem_free(rows);
     d->psi_dim = od;
     return psi_standardize(d->psi, d->n_charts, od, d);
 }
@@ -436,18 +437,18 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
     d->skip_pairs = skip_pairs;
     if (norm) { d->given_shift = norm->psi_shift; d->given_mul = norm->psi_mul; }
     /* Chart vertex count: one per (chart, vertex) pair. */
-    int *seen = malloc((size_t)m->nv * sizeof(int));
+    int *seen = mem_alloc((size_t)m->nv * sizeof(int));
     if (!seen) return error_nomem("chart vertices");
     for (int v = 0; v < m->nv; v++) seen[v] = -1;
-    int *order = malloc((size_t)m->nf * sizeof(int)), *start = calloc((size_t)n_charts + 1, sizeof(int));
-    if (!order || !start) { free(seen); free(order); free(start); return error_nomem("chart faces"); }
+    int *order = mem_alloc((size_t)m->nf * sizeof(int)), *start = mem_calloc((size_t)n_charts + 1, sizeof(int));
+    if (!order || !start) { mem_free(seen); mem_free(order); mem_free(start); return error_nomem("chart faces"); }
     for (int f = 0; f < m->nf; f++) start[face_chart[f] + 1]++;
     for (int c = 0; c < n_charts; c++) start[c + 1] += start[c];
-    int *pos = malloc((size_t)(n_charts + 1) * sizeof(int));
-    if (!pos) { free(seen); free(order); free(start); return error_nomem("chart faces"); }
+    int *pos = mem_alloc((size_t)(n_charts + 1) * sizeof(int));
+    if (!pos) { mem_free(seen); mem_free(order); mem_free(start); return error_nomem("chart faces"); }
     memcpy(pos, start, (size_t)(n_charts + 1) * sizeof(int));
     for (int f = 0; f < m->nf; f++) order[pos[face_chart[f]]++] = f;
-    free(pos);
+    mem_free(pos);
     long nv = 0;
     for (int c = 0; c < n_charts; c++)
         for (int k = start[c]; k < start[c + 1]; k++)
@@ -455,31 +456,31 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
                 int v = m->tri[3 * order[k] + q];
                 if (seen[v] != c) { seen[v] = c; nv++; }
             }
-    free(seen); free(order); free(start);
+    mem_free(seen); mem_free(order); mem_free(start);
     d->nv = (int)nv;
     d->nf = m->nf;
-    d->vmesh = malloc((size_t)nv * sizeof(int));
-    d->vchart = malloc((size_t)nv * sizeof(int));
-    d->x = malloc((size_t)nv * 3 * sizeof(float));
-    d->tri = malloc((size_t)m->nf * 3 * sizeof(int));
-    d->fmesh = malloc((size_t)m->nf * sizeof(int));
-    d->fchart = malloc((size_t)m->nf * sizeof(int));
-    d->fcum = malloc((size_t)m->nf * sizeof(double));
-    d->cos3d = malloc((size_t)m->nf * 3 * sizeof(float));
-    d->area3d = malloc((size_t)m->nf * sizeof(float));
-    d->center = malloc((size_t)n_charts * 3 * sizeof(double));
-    d->scale = malloc((size_t)n_charts * sizeof(double));
-    d->rot = malloc((size_t)n_charts * 9 * sizeof(double));
+    d->vmesh = mem_alloc((size_t)nv * sizeof(int));
+    d->vchart = mem_alloc((size_t)nv * sizeof(int));
+    d->x = mem_alloc((size_t)nv * 3 * sizeof(float));
+    d->tri = mem_alloc((size_t)m->nf * 3 * sizeof(int));
+    d->fmesh = mem_alloc((size_t)m->nf * sizeof(int));
+    d->fchart = mem_alloc((size_t)m->nf * sizeof(int));
+    d->fcum = mem_alloc((size_t)m->nf * sizeof(double));
+    d->cos3d = mem_alloc((size_t)m->nf * 3 * sizeof(float));
+    d->area3d = mem_alloc((size_t)m->nf * sizeof(float));
+    d->center = mem_alloc((size_t)n_charts * 3 * sizeof(double));
+    d->scale = mem_alloc((size_t)n_charts * sizeof(double));
+    d->rot = mem_alloc((size_t)n_charts * 9 * sizeof(double));
     if (!d->rot || !d->vmesh || !d->vchart || !d->x || !d->tri || !d->fmesh || !d->fchart || !d->fcum || !d->cos3d ||
         !d->area3d || !d->center || !d->scale)
         return error_nomem("training data");
     if (!skip_pairs && o->warm_iters > 0 && o->lambda_warm > 0 && !o->init) {
-        d->target = malloc((size_t)nv * 2 * sizeof(float));
+        d->target = mem_alloc((size_t)nv * 2 * sizeof(float));
         if (!d->target) return error_nomem("warm-start targets");
     }
     if ((!skip_pairs || o->infer_heads) && o->solve_steps > 0) {
-        d->frame_inv = malloc((size_t)m->nf * 4 * sizeof(float));
-        d->conf_w = malloc((size_t)m->nf * sizeof(float));
+        d->frame_inv = mem_alloc((size_t)m->nf * 4 * sizeof(float));
+        d->conf_w = mem_alloc((size_t)m->nf * sizeof(float));
         if (!d->frame_inv || !d->conf_w) return error_nomem("conformal targets");
     }
     int nv_used = 0, nf_used = 0;
@@ -491,12 +492,12 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
     neuv_status s = param_corners_build(d->tri, d->nf, &d->corners);
     if (s != NEUV_OK) return s;
     /* Targets in normalized units: from the normalized float positions, in double. */
-    double *xn = malloc((size_t)nv * 3 * sizeof(double));
+    double *xn = mem_alloc((size_t)nv * 3 * sizeof(double));
     if (!xn) return error_nomem("training data");
     for (long i = 0; i < nv * 3; i++) xn[i] = d->x[i];
     param_corner_targets(xn, &d->corners, d->cos3d, d->area3d);
     if (d->frame_inv) param_conformal_targets(xn, &d->corners, d->frame_inv, d->conf_w);
-    free(xn);
+    mem_free(xn);
     double acc = 0;
     for (int f = 0; f < d->nf; f++) { acc += d->area3d[f]; d->fcum[f] = acc; }
     return build_psi(m, feat, dim, o->psi_mode, d);
@@ -542,8 +543,8 @@ typedef struct step_buffers {
 
 static void step_buffers_free(step_buffers *b)
 {
-    free(b->x); free(b->row); free(b->feat); free(b->pi); free(b->pj); free(b->g); free(b->orient);
-    free(b->chart_sum); free(b->vertex_rows);
+    mem_free(b->x); mem_free(b->row); mem_free(b->feat); mem_free(b->pi); mem_free(b->pj); mem_free(b->g); mem_free(b->orient);
+    mem_free(b->chart_sum); mem_free(b->vertex_rows);
 }
 
 /* Fills one step's inputs: every chart vertex, then face points drawn anew. */
@@ -578,17 +579,17 @@ static neuv_status step_buffers_init(const train_data *d, const param_net_option
     b->np = d->nv + (o->face_points > 0 ? o->face_points : 0);
     b->nq = d->pairs.n < (size_t)o->iso_pairs || o->iso_pairs <= 0 ? (int)d->pairs.n : o->iso_pairs;
     int nq = b->nq > 0 ? b->nq : 1;
-    b->x = malloc((size_t)b->np * 3 * sizeof(float));
-    b->row = malloc((size_t)b->np * sizeof(int));
-    b->pi = malloc((size_t)nq * sizeof(int));
-    b->pj = malloc((size_t)nq * sizeof(int));
-    b->g = malloc((size_t)nq * sizeof(float));
-    b->orient = malloc((size_t)d->nf * sizeof(float));
-    b->chart_sum = malloc((size_t)d->n_charts * sizeof(double));
-    b->vertex_rows = malloc((size_t)(d->nv > 0 ? d->nv : 1) * sizeof(int));
+    b->x = mem_alloc((size_t)b->np * 3 * sizeof(float));
+    b->row = mem_alloc((size_t)b->np * sizeof(int));
+    b->pi = mem_alloc((size_t)nq * sizeof(int));
+    b->pj = mem_alloc((size_t)nq * sizeof(int));
+    b->g = mem_alloc((size_t)nq * sizeof(float));
+    b->orient = mem_alloc((size_t)d->nf * sizeof(float));
+    b->chart_sum = mem_alloc((size_t)d->n_charts * sizeof(double));
+    b->vertex_rows = mem_alloc((size_t)(d->nv > 0 ? d->nv : 1) * sizeof(int));
     if (!b->vertex_rows) return error_nomem("training step buffers");
     for (int i = 0; i < d->nv; i++) b->vertex_rows[i] = i;
-    if (o->psi_mode == PARAM_PSI_PER_VERTEX) b->feat = malloc((size_t)b->np * d->psi_dim * sizeof(float));
+    if (o->psi_mode == PARAM_PSI_PER_VERTEX) b->feat = mem_alloc((size_t)b->np * d->psi_dim * sizeof(float));
     if (!b->x || !b->row || !b->pi || !b->pj || !b->g || !b->orient || !b->chart_sum ||
         (o->psi_mode == PARAM_PSI_PER_VERTEX && !b->feat))
         return error_nomem("training step buffers");
@@ -639,9 +640,9 @@ static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const
                                 int *mirror, double *gain, double *corner_uv, int *flipped, double *cycle_rms)
 {
     int pooled = model->psi_mode == PARAM_PSI_POOLED;
-    double *chart_sum = malloc((size_t)d->n_charts * sizeof(double));
-    float *orient = malloc((size_t)(d->nf > 0 ? d->nf : 1) * sizeof(float));
-    if (!chart_sum || !orient) { free(chart_sum); free(orient); return error_nomem("chart orientation"); }
+    double *chart_sum = mem_alloc((size_t)d->n_charts * sizeof(double));
+    float *orient = mem_alloc((size_t)(d->nf > 0 ? d->nf : 1) * sizeof(float));
+    if (!chart_sum || !orient) { mem_free(chart_sum); mem_free(orient); return error_nomem("chart orientation"); }
     nn_ctx_reset(ctx);
     nn_tensor *x = nn_from(ctx, d->nv, 3, d->x);
     nn_tensor *psi = pooled ? nn_view(ctx, d->n_charts, d->psi_dim, d->psi) : nn_from(ctx, d->nv, d->psi_dim, d->feat);
@@ -655,7 +656,7 @@ static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const
         uv = param_mlp_forward(ctx, &model->f, x, psi, pooled ? d->vchart : NULL);
     }
     nn_tensor *xr = uv ? param_mlp_forward(ctx, &model->g, uv, psi, pooled ? d->vchart : NULL) : NULL;
-    if (!uv || !xr) { free(chart_sum); free(orient); return nn_ctx_status(ctx); }
+    if (!uv || !xr) { mem_free(chart_sum); mem_free(orient); return nn_ctx_status(ctx); }
     double cyc = 0;
     for (long i = 0; i < (long)d->nv * 3; i++) cyc += (double)(xr->data[i] - x->data[i]) * (xr->data[i] - x->data[i]);
     *cycle_rms = sqrt(cyc / d->nv);
@@ -666,12 +667,12 @@ static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const
      * (measured: beetle's charts came out at 0.07 of their area), and the
      * packing, the refinement and the texel density all expect charts at
      * their true size. */
-    double *a3 = calloc((size_t)d->n_charts, sizeof(double));
-    if (!a3) { free(chart_sum); free(orient); return error_nomem("chart scale"); }
+    double *a3 = mem_calloc((size_t)d->n_charts, sizeof(double));
+    if (!a3) { mem_free(chart_sum); mem_free(orient); return error_nomem("chart scale"); }
     for (int f = 0; f < d->nf; f++) a3[d->fchart[f]] += d->area3d[f];
     for (int c = 0; c < d->n_charts; c++)
         gain[c] = fabs(chart_sum[c]) > 0 && a3[c] > 0 ? sqrt(a3[c] / fabs(chart_sum[c])) : 1;
-    free(a3);
+    mem_free(a3);
     *flipped = 0;
     for (int f = 0; f < d->nf; f++) {
         double a = face_area_uv(uv->data, d->tri + 3 * f) * orient[f];
@@ -684,8 +685,8 @@ static neuv_status map_vertices(nn_ctx *ctx, const param_net_model *model, const
             corner_uv[6 * mf + 2 * k + 1] = p[1] / sc;
         }
     }
-    free(chart_sum);
-    free(orient);
+    mem_free(chart_sum);
+    mem_free(orient);
     return NEUV_OK;
 }
 
@@ -727,7 +728,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     step_buffers b = {0};
     nn_adam adam = {0};
     nn_ctx *ctx = NULL;
-    param_net_model *model = calloc(1, sizeof *model);
+    param_net_model *model = mem_calloc(1, sizeof *model);
     if (!model) return error_nomem("parameterization model");
     nn_params_init(&model->params);
     s = train_data_build(m, face_chart, n_charts, vertex_features, feature_dim, o, o->init, 0, &d);
@@ -850,7 +851,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         memset(&hr, 0, sizeof hr);
         s = param_output_solve_conformal(&model->f, &sd, o->solve_anchor, o->solve_steps, &sr);
         if (s == NEUV_OK && o->chart_heads) {
-            model->heads = malloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
+            model->heads = mem_alloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
             if (!model->heads) s = error_nomem("chart heads");
             else {
                 param_solve_data hd = sd;
@@ -878,9 +879,9 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     rep->train_seconds = now_seconds() - t1;
 
     /* Final map at the vertices, oriented counter-clockwise per chart. */
-    model->mirror = malloc((size_t)n_charts * sizeof(int));
+    model->mirror = mem_alloc((size_t)n_charts * sizeof(int));
     if (!model->mirror) { s = error_nomem("chart orientation"); goto done; }
-    model->uv_gain = malloc((size_t)n_charts * sizeof(double));
+    model->uv_gain = mem_alloc((size_t)n_charts * sizeof(double));
     if (!model->uv_gain) { s = error_nomem("chart scale"); goto done; }
     s = map_vertices(ctx, model, &d, 1, model->mirror, model->uv_gain, corner_uv, &rep->flipped, &rep->cycle_rms);
     if (s != NEUV_OK) goto done;
@@ -943,7 +944,7 @@ neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, co
     double t0 = now_seconds();
     train_data d;
     nn_ctx *ctx = NULL;
-    int *mirror = malloc((size_t)n_charts * sizeof(int));
+    int *mirror = mem_alloc((size_t)n_charts * sizeof(int));
     if (!mirror) return error_nomem("chart orientation");
     s = train_data_build(m, face_chart, n_charts, vertex_features, feature_dim, &o, model, 1, &d);
     if (s == NEUV_OK) {
@@ -952,21 +953,21 @@ neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, co
     }
     /* Charts the model never saw: the shared output layer, not its own
      * charts' heads; or heads solved for these charts. */
-    double *gain = s == NEUV_OK ? malloc((size_t)n_charts * sizeof(double)) : NULL;
+    double *gain = s == NEUV_OK ? mem_alloc((size_t)n_charts * sizeof(double)) : NULL;
     if (s == NEUV_OK && !gain) s = error_nomem("chart scale");
     param_net_model with = *model;
     with.heads = NULL;
     if (s == NEUV_OK && o.infer_heads) {
-        with.heads = malloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
+        with.heads = mem_alloc(sizeof(float) * (size_t)n_charts * param_head_size(&model->f));
         s = with.heads ? solve_new_heads(model, &d, &o, with.heads) : error_nomem("chart heads");
     }
     if (s == NEUV_OK)
         s = map_vertices(ctx, &with, &d, with.heads != NULL, mirror, gain, corner_uv, &rep->flipped, &rep->cycle_rms);
-    free(with.heads);
-    free(gain);
+    mem_free(with.heads);
+    mem_free(gain);
     nn_ctx_free(ctx);
     train_data_free(&d);
-    free(mirror);
+    mem_free(mirror);
     rep->seconds = now_seconds() - t0;
     return s;
 }

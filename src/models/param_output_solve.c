@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "losses/param_losses.h"
 
 int param_head_size(const param_mlp *f)
@@ -44,7 +45,7 @@ typedef struct normal_eq {
 
 static void normal_eq_free(normal_eq *q)
 {
-    free(q->a); free(q->g); free(q->rows); free(q->c);
+    mem_free(q->a); mem_free(q->g); mem_free(q->rows); mem_free(q->c);
     memset(q, 0, sizeof *q);
 }
 
@@ -53,10 +54,10 @@ static neuv_status normal_eq_init(normal_eq *q, int n)
     memset(q, 0, sizeof *q);
     q->n = n;
     q->cap = 1024;
-    q->a = calloc((size_t)n * n, sizeof(double));
-    q->g = calloc((size_t)n, sizeof(double));
-    q->rows = calloc((size_t)q->cap * n, sizeof(double));
-    q->c = calloc((size_t)q->cap, sizeof(double));
+    q->a = mem_calloc((size_t)n * n, sizeof(double));
+    q->g = mem_calloc((size_t)n, sizeof(double));
+    q->rows = mem_calloc((size_t)q->cap * n, sizeof(double));
+    q->c = mem_calloc((size_t)q->cap, sizeof(double));
     if (!q->a || !q->g || !q->rows || !q->c) { normal_eq_free(q); return error_nomem("output-layer solve"); }
     return NEUV_OK;
 }
@@ -340,9 +341,9 @@ typedef struct solve_state {
 
 static void solve_state_free(solve_state *st)
 {
-    free(st->phi); free(st->z); free(st->uv); free(st->uv0); free(st->tz); free(st->tuv); free(st->mv);
-    free(st->sigma); free(st->fold_s2); free(st->face_start); free(st->face_list); free(st->vert_start); free(st->vert_list);
-    free(st->all_faces); free(st->all_verts);
+    mem_free(st->phi); mem_free(st->z); mem_free(st->uv); mem_free(st->uv0); mem_free(st->tz); mem_free(st->tuv); mem_free(st->mv);
+    mem_free(st->sigma); mem_free(st->fold_s2); mem_free(st->face_start); mem_free(st->face_list); mem_free(st->vert_start); mem_free(st->vert_list);
+    mem_free(st->all_faces); mem_free(st->all_verts);
 }
 
 /* Each chart holds two far-apart vertices of uv0 (see the header). */
@@ -380,35 +381,35 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     st->d = d;
     int H = st->H = heads ? param_mlp_head_width(f) : f->width, nv = d->nv, nc = d->n_charts > 0 ? d->n_charts : 1;
     size_t v2 = sizeof(double) * 2 * (size_t)(nv > 0 ? nv : 1);
-    st->phi = malloc(sizeof(double) * (size_t)(nv > 0 ? nv : 1) * H);
-    st->z = malloc(v2); st->uv = malloc(v2); st->uv0 = malloc(v2); st->tz = malloc(v2); st->tuv = malloc(v2);
-    st->mv = calloc((size_t)(nv > 0 ? nv : 1), sizeof(double));
-    st->sigma = malloc(sizeof(int) * (size_t)nc);
-    st->fold_s2 = calloc((size_t)nc, sizeof(double));
-    st->face_start = calloc((size_t)nc + 1, sizeof(int));
-    st->vert_start = calloc((size_t)nc + 1, sizeof(int));
-    st->face_list = malloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
-    st->vert_list = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
-    st->all_faces = malloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
-    st->all_verts = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
-    double *csum = calloc((size_t)nc, sizeof(double));
+    st->phi = mem_alloc(sizeof(double) * (size_t)(nv > 0 ? nv : 1) * H);
+    st->z = mem_alloc(v2); st->uv = mem_alloc(v2); st->uv0 = mem_alloc(v2); st->tz = mem_alloc(v2); st->tuv = mem_alloc(v2);
+    st->mv = mem_calloc((size_t)(nv > 0 ? nv : 1), sizeof(double));
+    st->sigma = mem_alloc(sizeof(int) * (size_t)nc);
+    st->fold_s2 = mem_calloc((size_t)nc, sizeof(double));
+    st->face_start = mem_calloc((size_t)nc + 1, sizeof(int));
+    st->vert_start = mem_calloc((size_t)nc + 1, sizeof(int));
+    st->face_list = mem_alloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
+    st->vert_list = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+    st->all_faces = mem_alloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
+    st->all_verts = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+    double *csum = mem_calloc((size_t)nc, sizeof(double));
     if (!st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->fold_s2 || !st->face_start ||
         !st->vert_start || !st->face_list || !st->vert_list || !st->all_faces || !st->all_verts || !csum) {
-        free(csum);
+        mem_free(csum);
         return error_nomem("output-layer solve");
     }
     for (int f0 = 0; f0 < d->nf; f0++) { st->face_start[d->fchart[f0] + 1]++; st->all_faces[f0] = f0; }
     for (int v = 0; v < nv; v++) { st->vert_start[d->vchart[v] + 1]++; st->all_verts[v] = v; }
     for (int c = 0; c < nc; c++) { st->face_start[c + 1] += st->face_start[c]; st->vert_start[c + 1] += st->vert_start[c]; }
-    int *fp = malloc(sizeof(int) * (size_t)nc), *vp = malloc(sizeof(int) * (size_t)nc);
-    if (!fp || !vp) { free(fp); free(vp); free(csum); return error_nomem("output-layer solve"); }
+    int *fp = mem_alloc(sizeof(int) * (size_t)nc), *vp = mem_alloc(sizeof(int) * (size_t)nc);
+    if (!fp || !vp) { mem_free(fp); mem_free(vp); mem_free(csum); return error_nomem("output-layer solve"); }
     memcpy(fp, st->face_start, sizeof(int) * (size_t)nc);
     memcpy(vp, st->vert_start, sizeof(int) * (size_t)nc);
     for (int f0 = 0; f0 < d->nf; f0++) st->face_list[fp[d->fchart[f0]]++] = f0;
     for (int v = 0; v < nv; v++) st->vert_list[vp[d->vchart[v]]++] = v;
-    free(fp); free(vp);
+    mem_free(fp); mem_free(vp);
     neuv_status s = hidden_at(f, d, d->f_in, d->f_in_dim, heads, st->phi);
-    if (s != NEUV_OK) { free(csum); return s; }
+    if (s != NEUV_OK) { mem_free(csum); return s; }
     block all = {st->all_faces, st->all_verts, d->nf, nv};
     map_block(st->phi, H, theta, &all, st->z, st->uv);
     memcpy(st->uv0, st->uv, v2);
@@ -429,7 +430,7 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
         csum[d->fchart[f0]] += d->face_w[f0];
     }
     for (int c = 0; c < nc; c++) st->fold_s2[c] = csum[c] > 0 ? st->fold_s2[c] / csum[c] : 0;
-    free(csum);
+    mem_free(csum);
     add_pins(st, anchor);
     return NEUV_OK;
 }
@@ -462,14 +463,14 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
 {
     const param_solve_data *d = st->d;
     int H = st->H, n = 2 * (H + 1), flips0, taken = 0, best_step = 0;
-    double *trial = malloc(sizeof(double) * (size_t)n), *best = malloc(sizeof(double) * (size_t)n);
-    if (!trial || !best) { free(trial); free(best); return -1; }
+    double *trial = mem_alloc(sizeof(double) * (size_t)n), *best = mem_alloc(sizeof(double) * (size_t)n);
+    if (!trial || !best) { mem_free(trial); mem_free(best); return -1; }
     memcpy(best, theta, sizeof(double) * (size_t)n);
     double e = block_objective(st, b, st->uv, mips, anchor, &flips0);
     int flips_start = flips0, fewest = !mips && d->fold_weight > 0;
     for (int step = 0; step < steps; step++) {
         normal_eq q;
-        if (normal_eq_init(&q, n) != NEUV_OK) { free(trial); free(best); return -1; }
+        if (normal_eq_init(&q, n) != NEUV_OK) { mem_free(trial); mem_free(best); return -1; }
         if (mips) mips_rows(d, b, st->phi, H, st->z, st->uv, st->uv0, st->mv, st->sigma, anchor, &q);
         else gauss_newton_rows(d, b, st->phi, H, st->z, st->uv, st->uv0, st->mv, st->sigma, st->fold_s2, anchor, &q);
         if (normal_eq_solve(&q, 0, NULL) != 0) { normal_eq_free(&q); break; }
@@ -502,7 +503,7 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
         map_block(st->phi, H, theta, b, st->z, st->uv);
     }
     if (flips_out) *flips_out = best_step > 0 ? flips0 : flips_start;
-    free(trial); free(best);
+    mem_free(trial); mem_free(best);
     return best_step;
 }
 
@@ -541,7 +542,7 @@ neuv_status param_output_solve_conformal(param_mlp *f, const param_solve_data *d
     if (s != NEUV_OK) return s;
     int H = f->width, n = 2 * (H + 1);
     nn_linear *out = &f->rest[f->depth - 2];
-    double *theta = malloc(sizeof(double) * (size_t)n);
+    double *theta = mem_alloc(sizeof(double) * (size_t)n);
     solve_state st;
     if (!theta) return error_nomem("output-layer solve");
     theta_from_layer(out, H, theta);
@@ -561,7 +562,7 @@ neuv_status param_output_solve_conformal(param_mlp *f, const param_solve_data *d
         }
     }
     solve_state_free(&st);
-    free(theta);
+    mem_free(theta);
     return s;
 }
 
@@ -576,16 +577,16 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
     /* A head reads every hidden layer; it starts as the shared output layer
      * (zero weight on all but the last hidden layer, which comes last). */
     int W = f->width, H = param_mlp_head_width(f), n = 2 * (H + 1), off = H - W;
-    double *shared = calloc((size_t)n, sizeof(double)), *theta = malloc(sizeof(double) * (size_t)n);
-    double *last = malloc(sizeof(double) * 2 * (size_t)(W + 1));
+    double *shared = mem_calloc((size_t)n, sizeof(double)), *theta = mem_alloc(sizeof(double) * (size_t)n);
+    double *last = mem_alloc(sizeof(double) * 2 * (size_t)(W + 1));
     solve_state st;
-    if (!shared || !theta || !last) { free(shared); free(theta); free(last); return error_nomem("output-layer solve"); }
+    if (!shared || !theta || !last) { mem_free(shared); mem_free(theta); mem_free(last); return error_nomem("output-layer solve"); }
     theta_from_layer(&f->rest[f->depth - 2], W, last);
     for (int j = 0; j < 2; j++) {
         for (int i = 0; i < W; i++) shared[(size_t)j * (H + 1) + off + i] = last[(size_t)j * (W + 1) + i];
         shared[(size_t)j * (H + 1) + H] = last[(size_t)j * (W + 1) + W];
     }
-    free(last);
+    mem_free(last);
     s = solve_state_init(&st, f, d, anchor, 1, shared);
     if (s == NEUV_OK) {
         block all = {st.all_faces, st.all_verts, d->nf, d->nv};
@@ -606,7 +607,7 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
         rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
     }
     solve_state_free(&st);
-    free(shared); free(theta);
+    mem_free(shared); mem_free(theta);
     return s;
 }
 
@@ -631,9 +632,9 @@ neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const f
         return error_set(NEUV_ERR_INPUT, "output-layer solve needs hidden layers (inverse: 3 outputs)");
     int H = g->width, K = H + 1, nv = d->nv, F = heads ? param_mlp_head_width(f) : f->width;
     nn_linear *out = &g->rest[g->depth - 2];
-    float *uvf = malloc(sizeof(float) * 2 * (size_t)nv), *hf = malloc(sizeof(float) * (size_t)nv * F);
-    double *phi_f = malloc(sizeof(double) * (size_t)nv * F), *phi = malloc(sizeof(double) * (size_t)nv * H);
-    double *rhs = calloc((size_t)K * 3, sizeof(double));
+    float *uvf = mem_alloc(sizeof(float) * 2 * (size_t)nv), *hf = mem_alloc(sizeof(float) * (size_t)nv * F);
+    double *phi_f = mem_alloc(sizeof(double) * (size_t)nv * F), *phi = mem_alloc(sizeof(double) * (size_t)nv * H);
+    double *rhs = mem_calloc((size_t)K * 3, sizeof(double));
     normal_eq q = {0};
     neuv_status s = NEUV_OK;
     if (!uvf || !hf || !phi_f || !phi || !rhs) { s = error_nomem("output-layer solve"); goto done; }
@@ -679,7 +680,7 @@ neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const f
     }
 done:
     normal_eq_free(&q);
-    free(uvf); free(hf); free(phi_f); free(phi); free(rhs);
+    mem_free(uvf); mem_free(hf); mem_free(phi_f); mem_free(phi); mem_free(rhs);
     return s;
 }
 
@@ -687,7 +688,7 @@ double param_output_solve_gradient_error(const param_mlp *f, const param_solve_d
 {
     if (check_f(f, anchor) != NEUV_OK) return INFINITY;
     int H = f->width, n = 2 * (H + 1);
-    double *theta = malloc(sizeof(double) * (size_t)n), *grad = malloc(sizeof(double) * (size_t)n);
+    double *theta = mem_alloc(sizeof(double) * (size_t)n), *grad = mem_alloc(sizeof(double) * (size_t)n);
     solve_state st;
     normal_eq q = {0};
     double worst = INFINITY;
@@ -721,7 +722,7 @@ double param_output_solve_gradient_error(const param_mlp *f, const param_solve_d
     solve_state_free(&st);
 out:
     normal_eq_free(&q);
-    free(theta); free(grad);
+    mem_free(theta); mem_free(grad);
     return worst;
 }
 
@@ -737,8 +738,8 @@ static int edge_key_cmp(const void *p, const void *q)
 
 void param_solve_subdivided_free(param_solve_subdivided *sd)
 {
-    free(sd->x); free(sd->f_in); free(sd->vchart); free(sd->tri); free(sd->fchart);
-    free(sd->frame_inv); free(sd->face_w); free(sd->fold_w);
+    mem_free(sd->x); mem_free(sd->f_in); mem_free(sd->vchart); mem_free(sd->tri); mem_free(sd->fchart);
+    mem_free(sd->frame_inv); mem_free(sd->face_w); mem_free(sd->fold_w);
     memset(sd, 0, sizeof *sd);
 }
 
@@ -747,9 +748,9 @@ neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivi
     memset(out, 0, sizeof *out);
     if (d->psi_per_vertex) return error_set(NEUV_ERR_INPUT, "subdivided solve data needs a pooled ψ");
     int nv = d->nv, nf = d->nf, dim = d->f_in_dim;
-    edge_key *e = malloc(sizeof *e * 3 * (size_t)(nf > 0 ? nf : 1));
-    int *mid = malloc(sizeof(int) * 3 * (size_t)(nf > 0 ? nf : 1));
-    if (!e || !mid) { free(e); free(mid); return error_nomem("subdivided solve data"); }
+    edge_key *e = mem_alloc(sizeof *e * 3 * (size_t)(nf > 0 ? nf : 1));
+    int *mid = mem_alloc(sizeof(int) * 3 * (size_t)(nf > 0 ? nf : 1));
+    if (!e || !mid) { mem_free(e); mem_free(mid); return error_nomem("subdivided solve data"); }
     for (int f = 0; f < nf; f++)
         for (int k = 0; k < 3; k++) {
             int a = d->tri[3 * f + k], b = d->tri[3 * f + (k + 1) % 3];
@@ -763,15 +764,15 @@ neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivi
     }
     if (nf > 0) ne++;
     int NV = nv + ne, NF = 5 * nf;
-    out->x = malloc(sizeof(float) * 3 * (size_t)NV);
-    out->f_in = d->f_in == d->x ? NULL : malloc(sizeof(float) * (size_t)dim * NV);
-    out->vchart = malloc(sizeof(int) * (size_t)NV);
-    out->tri = malloc(sizeof(int) * 3 * (size_t)NF);
-    out->fchart = malloc(sizeof(int) * (size_t)NF);
-    out->frame_inv = malloc(sizeof(float) * 4 * (size_t)NF);
-    out->face_w = malloc(sizeof(float) * (size_t)NF);
-    out->fold_w = malloc(sizeof(float) * (size_t)NF);
-    double *pos = malloc(sizeof(double) * 3 * (size_t)NV);
+    out->x = mem_alloc(sizeof(float) * 3 * (size_t)NV);
+    out->f_in = d->f_in == d->x ? NULL : mem_alloc(sizeof(float) * (size_t)dim * NV);
+    out->vchart = mem_alloc(sizeof(int) * (size_t)NV);
+    out->tri = mem_alloc(sizeof(int) * 3 * (size_t)NF);
+    out->fchart = mem_alloc(sizeof(int) * (size_t)NF);
+    out->frame_inv = mem_alloc(sizeof(float) * 4 * (size_t)NF);
+    out->face_w = mem_alloc(sizeof(float) * (size_t)NF);
+    out->fold_w = mem_alloc(sizeof(float) * (size_t)NF);
+    double *pos = mem_alloc(sizeof(double) * 3 * (size_t)NV);
     neuv_status s = NEUV_OK;
     if (!out->x || (d->f_in != d->x && !out->f_in) || !out->vchart || !out->tri || !out->fchart || !out->frame_inv ||
         !out->face_w || !out->fold_w || !pos) {
@@ -810,15 +811,15 @@ neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivi
     }
     {
         param_corners c;
-        float *w = malloc(sizeof(float) * 4 * (size_t)(nf > 0 ? nf : 1));
+        float *w = mem_alloc(sizeof(float) * 4 * (size_t)(nf > 0 ? nf : 1));
         if (!w || param_corners_build(out->tri + 3 * (size_t)nf, 4 * nf, &c) != NEUV_OK) {
-            free(w);
+            mem_free(w);
             s = error_nomem("subdivided solve data");
             goto done;
         }
         param_conformal_targets(pos, &c, out->frame_inv + 4 * (size_t)nf, w);
         param_corners_free(&c);
-        free(w);
+        mem_free(w);
     }
     out->d = *d;
     out->d.nv = NV;
@@ -832,7 +833,7 @@ neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivi
     out->d.face_w = out->face_w;
     out->d.fold_w = out->fold_w;
 done:
-    free(e); free(mid); free(pos);
+    mem_free(e); mem_free(mid); mem_free(pos);
     if (s != NEUV_OK) param_solve_subdivided_free(out);
     return s;
 }

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/rng.h"
 #include "core/timer.h"
 #include "geometry/heat_geodesics.h"
@@ -78,7 +79,7 @@ neuv_status patchnet_model_create_for_mesh(patchnet_model *model, const patchnet
     float *x = NULL;
     int dim = 0;
     neuv_status st = diffusion_net_input_features(m, ops, o->features, &x, &dim);
-    free(x);
+    mem_free(x);
     return st ? st : patchnet_model_create(model, o, dim, k);
 }
 
@@ -92,8 +93,8 @@ void patchnet_model_free(patchnet_model *model)
 /* Per-face constants of the losses: areas #F by 1, unit normals #F by 3. */
 static neuv_status face_area_normal(const neuv_mesh *m, float **area, float **normal)
 {
-    *area = malloc(sizeof(float) * (size_t)m->nf);
-    *normal = malloc(sizeof(float) * 3 * (size_t)m->nf);
+    *area = mem_alloc(sizeof(float) * (size_t)m->nf);
+    *normal = mem_alloc(sizeof(float) * 3 * (size_t)m->nf);
     if (!*area || !*normal) return error_nomem("face areas");
     for (int f = 0; f < m->nf; f++) {
         double n[3];
@@ -110,7 +111,7 @@ static int cmp_int(const void *a, const void *b) { int x = *(const int *)a, y = 
 
 static neuv_status sample_sources(int nf, int s, uint64_t seed, int *out)
 {
-    int *perm = malloc(sizeof(int) * (size_t)nf);
+    int *perm = mem_alloc(sizeof(int) * (size_t)nf);
     if (!perm) return error_nomem("L_geo sources");
     for (int i = 0; i < nf; i++) perm[i] = i;
     rng r;
@@ -120,7 +121,7 @@ static neuv_status sample_sources(int nf, int s, uint64_t seed, int *out)
         int t = perm[i]; perm[i] = perm[j]; perm[j] = t;
     }
     memcpy(out, perm, sizeof(int) * (size_t)s);
-    free(perm);
+    mem_free(perm);
     qsort(out, (size_t)s, sizeof(int), cmp_int);
     return NEUV_OK;
 }
@@ -134,19 +135,19 @@ static neuv_status source_distances(const neuv_mesh *m, const int *src, int s, f
     neuv_status st = heat_geodesics_create(m, 1.0, &hg);
     if (st) return st;
     double diam = 0;
-    double *d = malloc(sizeof(double) * (size_t)m->nf * s);
+    double *d = mem_alloc(sizeof(double) * (size_t)m->nf * s);
     if (!d) { heat_geodesics_free(hg); return error_nomem("L_geo distances"); }
     st = heat_geodesics_diameter(hg, &diam);
     if (!st) st = heat_geodesics_face_distances(hg, m, src, s, d);
     heat_geodesics_free(hg);
-    if (st) { free(d); return st; }
+    if (st) { mem_free(d); return st; }
     if (!(diam > 0) || !isfinite(diam)) diam = 1;
     /* Column-major #F by #S is row-major #S by #F. */
     for (size_t i = 0; i < (size_t)m->nf * s; i++) {
         double v = d[i] / diam;
         dist[i] = (float)(isfinite(v) ? (v < 0 ? 0 : v) : 1.0);
     }
-    free(d);
+    mem_free(d);
     return NEUV_OK;
 }
 
@@ -171,7 +172,7 @@ typedef struct train_shape {
 static void train_shape_free(train_shape *t)
 {
     if (t->g_ready) diffusion_net_geometry_free(&t->g);
-    free(t->x); free(t->area); free(t->normal); free(t->dist); free(t->src);
+    mem_free(t->x); mem_free(t->area); mem_free(t->normal); mem_free(t->dist); mem_free(t->src);
     memset(t, 0, sizeof *t);
 }
 
@@ -192,8 +193,8 @@ static neuv_status train_shape_init(train_shape *t, const patchnet_model *model,
         return error_set(NEUV_ERR_INPUT, "PatchNet: model expects %d input channels, features have %d", model->in_dim,
                          t->dim);
     if ((st = face_area_normal(m, &t->area, &t->normal))) return st;
-    t->src = malloc(sizeof(int) * (size_t)t->S);
-    t->dist = malloc(sizeof(float) * (size_t)t->S * nf);
+    t->src = mem_alloc(sizeof(int) * (size_t)t->S);
+    t->dist = mem_alloc(sizeof(float) * (size_t)t->S * nf);
     if (!t->src || !t->dist) return error_nomem("PatchNet training");
     if ((st = sample_sources(nf, t->S, seed, t->src))) return st;
     return source_distances(m, t->src, t->S, t->dist);
@@ -214,7 +215,7 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
     patchnet_options def;
     if (!o) { patchnet_default_options(&def); o = &def; }
     if (n_shapes < 1) return error_set(NEUV_ERR_INPUT, "PatchNet: no shapes to train on");
-    train_shape *sh = calloc((size_t)n_shapes, sizeof *sh);
+    train_shape *sh = mem_calloc((size_t)n_shapes, sizeof *sh);
     if (!sh) return error_nomem("PatchNet training");
     neuv_status st = NEUV_OK;
     nn_ctx *ctx = NULL;
@@ -230,7 +231,7 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
     }
     if (st) goto done;
     double t_geo = now_seconds() - t0;
-    hist = malloc(sizeof(double) * (size_t)iters);
+    hist = mem_alloc(sizeof(double) * (size_t)iters);
     if (!hist) { st = error_nomem("PatchNet training"); goto done; }
     nn_adam_config acfg = nn_adam_defaults();
     acfg.lr = o->lr > 0 ? o->lr : 1e-3f;
@@ -294,8 +295,8 @@ done:
     if (ctx) nn_ctx_free(ctx);
     if (adam_ready) nn_adam_free(&adam);
     for (int i = 0; i < n_shapes; i++) train_shape_free(&sh[i]);
-    free(sh);
-    free(hist);
+    mem_free(sh);
+    mem_free(hist);
     return st;
 }
 
@@ -330,7 +331,7 @@ neuv_status patchnet_infer_features(const patchnet_model *model, const neuv_mesh
         }
     if (vertex_features) {
         size_t n = (size_t)hidden->rows * hidden->cols;
-        float *vf = malloc(sizeof(float) * n);
+        float *vf = mem_alloc(sizeof(float) * n);
         if (!vf) { st = error_nomem("PatchNet vertex features"); goto done; }
         memcpy(vf, hidden->data, sizeof(float) * n);
         *vertex_features = vf;
@@ -339,7 +340,7 @@ neuv_status patchnet_infer_features(const patchnet_model *model, const neuv_mesh
 done:
     if (ctx) nn_ctx_free(ctx);
     diffusion_net_geometry_free(&g);
-    free(x);
+    mem_free(x);
     return st;
 }
 

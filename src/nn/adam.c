@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 nn_adam_config nn_adam_defaults(void)
 {
@@ -17,11 +18,11 @@ void nn_adam_free(nn_adam *opt)
 {
     if (!opt) return;
     if (opt->m)
-        for (int i = 0; i < opt->params->n; i++) free(opt->m[i]);
+        for (int i = 0; i < opt->params->n; i++) mem_free(opt->m[i]);
     if (opt->v)
-        for (int i = 0; i < opt->params->n; i++) free(opt->v[i]);
-    free(opt->m);
-    free(opt->v);
+        for (int i = 0; i < opt->params->n; i++) mem_free(opt->v[i]);
+    mem_free(opt->m);
+    mem_free(opt->v);
     opt->m = opt->v = NULL;
 }
 
@@ -35,13 +36,13 @@ neuv_status nn_adam_init(nn_adam *opt, nn_params *params, const nn_adam_config *
                          opt->cfg.lr, opt->cfg.beta1, opt->cfg.beta2, opt->cfg.eps, opt->cfg.clip_norm);
     opt->params = params;
     int n = params->n;
-    opt->m = calloc(n ? (size_t)n : 1, sizeof *opt->m);
-    opt->v = calloc(n ? (size_t)n : 1, sizeof *opt->v);
+    opt->m = mem_calloc(n ? (size_t)n : 1, sizeof *opt->m);
+    opt->v = mem_calloc(n ? (size_t)n : 1, sizeof *opt->v);
     if (!opt->m || !opt->v) { nn_adam_free(opt); return error_nomem("Adam state"); }
     for (int i = 0; i < n; i++) {
         size_t sz = (size_t)params->t[i]->rows * (size_t)params->t[i]->cols;
-        opt->m[i] = calloc(sz, sizeof(float));
-        opt->v[i] = calloc(sz, sizeof(float));
+        opt->m[i] = mem_calloc(sz, sizeof(float));
+        opt->v[i] = mem_calloc(sz, sizeof(float));
         if (!opt->m[i] || !opt->v[i]) { nn_adam_free(opt); return error_nomem("Adam state"); }
     }
     return NEUV_OK;

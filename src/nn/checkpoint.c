@@ -13,6 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/mem.h"
 
 static const char MAGIC[8] = {'N', 'E', 'U', 'V', 'M', 'O', 'D', 'L'};
 /* Smallest tensor record: name length, a 1-byte name, rows, cols, CRC, no data. */
@@ -130,11 +131,11 @@ void nn_checkpoint_free(nn_checkpoint *c)
 {
     if (!c) return;
     for (int i = 0; i < c->n; i++) {
-        free(c->t[i].name);
-        free(c->t[i].data);
+        mem_free(c->t[i].name);
+        mem_free(c->t[i].data);
     }
-    free(c->t);
-    free(c->config);
+    mem_free(c->t);
+    mem_free(c->config);
     memset(c, 0, sizeof *c);
 }
 
@@ -158,7 +159,7 @@ static neuv_status parse(reader *r, nn_checkpoint *out)
     if (!read_u32(r, &hlen)) return truncated("header length", 4, r->left);
     if ((size_t)hlen + 4 > r->left) return truncated("JSON header", (size_t)hlen + 4, r->left);
     if (memchr(r->p, 0, hlen)) return error_set(NEUV_ERR_INPUT, "checkpoint header contains a NUL byte");
-    out->config = malloc((size_t)hlen + 1);
+    out->config = mem_alloc((size_t)hlen + 1);
     if (!out->config) return error_nomem("checkpoint header");
     memcpy(out->config, r->p, hlen);
     out->config[hlen] = '\0';
@@ -172,7 +173,7 @@ static neuv_status parse(reader *r, nn_checkpoint *out)
     if ((uint64_t)count * MIN_TENSOR_RECORD > r->left)
         return error_set(NEUV_ERR_INPUT, "truncated checkpoint: %u tensors announced but only %zu bytes follow",
                          count, r->left);
-    out->t = calloc(count ? count : 1, sizeof *out->t);
+    out->t = mem_calloc(count ? count : 1, sizeof *out->t);
     if (!out->t) return error_nomem("checkpoint tensor list");
     for (uint32_t i = 0; i < count; i++) {
         uint32_t nlen, rows, cols, dcrc;
@@ -209,10 +210,10 @@ static neuv_status parse(reader *r, nn_checkpoint *out)
             return error_set(NEUV_ERR_INPUT, "CRC mismatch in tensor '%s' (stored %08x, computed %08x)", name,
                              dcrc, got);
         nn_checkpoint_tensor *t = &out->t[i];
-        t->name = strdup(name);
-        t->data = malloc((size_t)bytes);
+        t->name = mem_strdup(name);
+        t->data = mem_alloc((size_t)bytes);
         if (!t->name || !t->data) {
-            free(t->name); free(t->data);
+            mem_free(t->name); mem_free(t->data);
             t->name = NULL; t->data = NULL;
             return error_nomem("checkpoint tensor");
         }
@@ -252,14 +253,14 @@ neuv_status nn_checkpoint_load(const char *path, nn_checkpoint *out)
         return error_set(NEUV_ERR_IO, "cannot read: not a regular file");
     }
     long size = (long)info.st_size;
-    unsigned char *buf = malloc(size ? (size_t)size : 1);
+    unsigned char *buf = mem_alloc(size ? (size_t)size : 1);
     if (!buf) { fclose(fp); return error_nomem("checkpoint file"); }
     size_t got = fread(buf, 1, (size_t)size, fp);
     int err = ferror(fp);
     fclose(fp);
-    if (err || got != (size_t)size) { free(buf); return error_set(NEUV_ERR_IO, "read failed"); }
+    if (err || got != (size_t)size) { mem_free(buf); return error_set(NEUV_ERR_IO, "read failed"); }
     neuv_status st = nn_checkpoint_parse(buf, (size_t)size, out);
-    free(buf);
+    mem_free(buf);
     return st;
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "core/rng.h"
 
 neuv_status nn_linear_create(nn_linear *l, int in, int out, nn_activation act,
@@ -17,10 +18,10 @@ neuv_status nn_linear_create(nn_linear *l, int in, int out, nn_activation act,
     char name[256];
     snprintf(name, sizeof name, "%s.w", prefix);
     l->w = nn_params_add(params, in, out, name);
-    if (!l->w) return NEUV_ERR_INPUT;
+    if (!l->w) return error_last();
     snprintf(name, sizeof name, "%s.b", prefix);
     l->b = nn_params_add(params, 1, out, name);
-    if (!l->b) return NEUV_ERR_INPUT;
+    if (!l->b) return error_last();
     l->in = in;
     l->out = out;
     /* Kaiming-uniform keeps activations' variance through ReLU-family layers
@@ -62,7 +63,7 @@ neuv_status nn_mlp_create(nn_mlp *m, const nn_mlp_config *cfg, nn_params *params
     if (m->cfg.leaky_slope == 0) m->cfg.leaky_slope = 0.01f;
     if (!(m->cfg.leaky_slope > 0 && m->cfg.leaky_slope < 1))
         return error_set(NEUV_ERR_INPUT, "MLP '%s': LeakyReLU slope %g outside (0, 1)", prefix, m->cfg.leaky_slope);
-    m->layers = calloc((size_t)cfg->depth, sizeof *m->layers);
+    m->layers = mem_calloc((size_t)cfg->depth, sizeof *m->layers);
     if (!m->layers) return error_nomem("MLP layers");
     m->n = cfg->depth;
     rng r;
@@ -91,7 +92,7 @@ nn_tensor *nn_mlp_forward(nn_ctx *ctx, const nn_mlp *m, nn_tensor *x)
 void nn_mlp_free(nn_mlp *m)
 {
     if (!m) return;
-    free(m->layers);
+    mem_free(m->layers);
     m->layers = NULL;
     m->n = 0;
 }

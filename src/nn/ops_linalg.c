@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 /* ---- matmul: C = op(A) op(B) ------------------------------------------ */
 
@@ -260,8 +261,8 @@ void nn_backward_linear(nn_ctx *ctx, nn_tensor *t)
 void nn_sparse_free(nn_sparse *s)
 {
     if (!s) return;
-    free(s->row_start); free(s->col); free(s->val);
-    free(s->t_row_start); free(s->t_col); free(s->t_val);
+    mem_free(s->row_start); mem_free(s->col); mem_free(s->val);
+    mem_free(s->t_row_start); mem_free(s->t_col); mem_free(s->t_val);
     memset(s, 0, sizeof *s);
 }
 
@@ -281,12 +282,12 @@ neuv_status nn_sparse_from_csr(const nn_csr *a, nn_sparse *out)
     out->rows = a->rows;
     out->cols = a->cols;
     size_t alloc = nnz ? nnz : 1;
-    out->row_start = malloc((size_t)(a->rows + 1) * sizeof(int));
-    out->col = malloc(alloc * sizeof(int));
-    out->val = malloc(alloc * sizeof(float));
-    out->t_row_start = calloc((size_t)a->cols + 1, sizeof(int));
-    out->t_col = malloc(alloc * sizeof(int));
-    out->t_val = malloc(alloc * sizeof(float));
+    out->row_start = mem_alloc((size_t)(a->rows + 1) * sizeof(int));
+    out->col = mem_alloc(alloc * sizeof(int));
+    out->val = mem_alloc(alloc * sizeof(float));
+    out->t_row_start = mem_calloc((size_t)a->cols + 1, sizeof(int));
+    out->t_col = mem_alloc(alloc * sizeof(int));
+    out->t_val = mem_alloc(alloc * sizeof(float));
     if (!out->row_start || !out->col || !out->val || !out->t_row_start || !out->t_col || !out->t_val) {
         nn_sparse_free(out);
         return error_nomem("float32 sparse operator");
@@ -298,7 +299,7 @@ neuv_status nn_sparse_from_csr(const nn_csr *a, nn_sparse *out)
      * lists its entries by increasing column, a fixed summation order. */
     for (size_t e = 0; e < nnz; e++) out->t_row_start[a->col[e] + 1]++;
     for (int j = 0; j < a->cols; j++) out->t_row_start[j + 1] += out->t_row_start[j];
-    int *fill = malloc((size_t)a->cols * sizeof(int));
+    int *fill = mem_alloc((size_t)a->cols * sizeof(int));
     if (!fill) { nn_sparse_free(out); return error_nomem("sparse transpose"); }
     memcpy(fill, out->t_row_start, (size_t)a->cols * sizeof(int));
     for (int i = 0; i < a->rows; i++)
@@ -307,7 +308,7 @@ neuv_status nn_sparse_from_csr(const nn_csr *a, nn_sparse *out)
             out->t_col[p] = i;
             out->t_val[p] = (float)a->val[e];
         }
-    free(fill);
+    mem_free(fill);
     return NEUV_OK;
 }
 

@@ -2,18 +2,21 @@
 #include "nn/nn_internal.h"
 
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 
 #define NN_ALIGN 64
 
 typedef struct arena_block {
     struct arena_block *next;
     size_t cap, used;
-    unsigned char *mem;
+    unsigned char *mem; /* raw rounded up to NN_ALIGN */
+    void *raw;          /* what mem_alloc returned: the allocator hook has no aligned form */
 } arena_block;
 
 struct nn_ctx {
@@ -26,10 +29,11 @@ struct nn_ctx {
 
 static arena_block *block_create(size_t cap)
 {
-    arena_block *b = malloc(sizeof *b);
+    arena_block *b = mem_alloc(sizeof *b);
     if (!b) return NULL;
-    b->mem = aligned_alloc(NN_ALIGN, (cap + NN_ALIGN - 1) / NN_ALIGN * NN_ALIGN);
-    if (!b->mem) { free(b); return NULL; }
+    b->raw = mem_alloc((cap + NN_ALIGN - 1) / NN_ALIGN * NN_ALIGN + NN_ALIGN - 1);
+    if (!b->raw) { mem_free(b); return NULL; }
+    b->mem = (unsigned char *)(((uintptr_t)b->raw + NN_ALIGN - 1) & ~(uintptr_t)(NN_ALIGN - 1));
     b->next = NULL;
     b->cap = cap;
     b->used = 0;
@@ -40,19 +44,19 @@ static void blocks_free(arena_block *b)
 {
     while (b) {
         arena_block *n = b->next;
-        free(b->mem);
-        free(b);
+        mem_free(b->raw);
+        mem_free(b);
         b = n;
     }
 }
 
 nn_ctx *nn_ctx_create(size_t initial_bytes)
 {
-    nn_ctx *c = calloc(1, sizeof *c);
+    nn_ctx *c = mem_calloc(1, sizeof *c);
     if (!c) { error_nomem("neural network context"); return NULL; }
     if (initial_bytes) {
         c->first = block_create(initial_bytes);
-        if (!c->first) { free(c); error_nomem("neural network arena"); return NULL; }
+        if (!c->first) { mem_free(c); error_nomem("neural network arena"); return NULL; }
         c->grow_count = 1;
     }
     c->cur = c->first;
@@ -63,7 +67,7 @@ void nn_ctx_free(nn_ctx *ctx)
 {
     if (!ctx) return;
     blocks_free(ctx->first);
-    free(ctx);
+    mem_free(ctx);
 }
 
 void nn_ctx_reset(nn_ctx *ctx)
@@ -242,18 +246,18 @@ nn_tensor *nn_param_create(int rows, int cols, const char *name)
         error_set(NEUV_ERR_INPUT, "parameter '%s': bad shape %d by %d", name ? name : "", rows, cols);
         return NULL;
     }
-    nn_tensor *p = calloc(1, sizeof *p);
+    nn_tensor *p = mem_calloc(1, sizeof *p);
     size_t n = (size_t)rows * (size_t)cols;
     char *nm = NULL;
     if (p) {
-        p->data = calloc(n, sizeof(float));
-        p->grad = calloc(n, sizeof(float));
-        if (name) nm = strdup(name);
+        p->data = mem_calloc(n, sizeof(float));
+        p->grad = mem_calloc(n, sizeof(float));
+        if (name) nm = mem_strdup(name);
     }
     if (!p || !p->data || !p->grad || (name && !nm)) {
-        if (p) { free(p->data); free(p->grad); }
-        free(p);
-        free(nm);
+        if (p) { mem_free(p->data); mem_free(p->grad); }
+        mem_free(p);
+        mem_free(nm);
         error_nomem("parameter");
         return NULL;
     }
@@ -269,10 +273,10 @@ nn_tensor *nn_param_create(int rows, int cols, const char *name)
 void nn_param_free(nn_tensor *p)
 {
     if (!p) return;
-    free(p->data);
-    free(p->grad);
-    free((char *)p->name);
-    free(p);
+    mem_free(p->data);
+    mem_free(p->grad);
+    mem_free((char *)p->name);
+    mem_free(p);
 }
 
 void nn_params_init(nn_params *ps) { memset(ps, 0, sizeof *ps); }
@@ -290,7 +294,7 @@ nn_tensor *nn_params_add(nn_params *ps, int rows, int cols, const char *name)
     if (nn_params_find(ps, name)) { error_set(NEUV_ERR_INPUT, "duplicate parameter name '%s'", name); return NULL; }
     if (ps->n == ps->cap) {
         int cap = ps->cap ? ps->cap * 2 : 16;
-        nn_tensor **t = realloc(ps->t, (size_t)cap * sizeof *t);
+        nn_tensor **t = mem_realloc(ps->t, (size_t)cap * sizeof *t);
         if (!t) { error_nomem("parameter list"); return NULL; }
         ps->t = t;
         ps->cap = cap;
@@ -318,7 +322,7 @@ void nn_params_free(nn_params *ps)
 {
     if (!ps) return;
     for (int i = 0; i < ps->n; i++) nn_param_free(ps->t[i]);
-    free(ps->t);
+    mem_free(ps->t);
     memset(ps, 0, sizeof *ps);
 }
 

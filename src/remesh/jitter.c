@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "core/rng.h"
 #include "mesh/edge_faces.h"
 #include "mesh/edge_map.h"
@@ -84,13 +85,13 @@ neuv_status mesh_jitter(neuv_mesh *m, uint64_t seed, const jitter_options *opts,
     memset(&tree, 0, sizeof tree);
     edge_faces ef;
     memset(&ef, 0, sizeof ef);
-    double *emin = malloc(sizeof(double) * (size_t)nv), *normal = calloc((size_t)nv * 3, sizeof(double));
-    int *nb = calloc((size_t)nv, sizeof(int)), *bnbr = malloc(sizeof(int) * 2 * (size_t)nv);
-    int *vuv = malloc(sizeof(int) * (size_t)nv);
-    char *fixed = calloc((size_t)nv, 1);
-    cx.vf_start = calloc((size_t)nv + 1, sizeof(int));
-    cx.vf = malloc(sizeof(int) * 3 * (size_t)nf);
-    cx.orig_cross = malloc(sizeof(double) * 3 * (size_t)nf);
+    double *emin = mem_alloc(sizeof(double) * (size_t)nv), *normal = mem_calloc((size_t)nv * 3, sizeof(double));
+    int *nb = mem_calloc((size_t)nv, sizeof(int)), *bnbr = mem_alloc(sizeof(int) * 2 * (size_t)nv);
+    int *vuv = mem_alloc(sizeof(int) * (size_t)nv);
+    char *fixed = mem_calloc((size_t)nv, 1);
+    cx.vf_start = mem_calloc((size_t)nv + 1, sizeof(int));
+    cx.vf = mem_alloc(sizeof(int) * 3 * (size_t)nf);
+    cx.orig_cross = mem_alloc(sizeof(double) * 3 * (size_t)nf);
     neuv_mesh *orig = mesh_clone(m);
     cx.orig = orig;
     if (!emin || !normal || !nb || !bnbr || !vuv || !fixed || !cx.vf_start || !cx.vf || !cx.orig_cross || !orig)
@@ -108,12 +109,12 @@ neuv_status mesh_jitter(neuv_mesh *m, uint64_t seed, const jitter_options *opts,
     }
     for (int v = 0; v < nv; v++) cx.vf_start[v + 1] += cx.vf_start[v];
     {
-        int *fill = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+        int *fill = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
         if (!fill) goto nomem;
         memcpy(fill, cx.vf_start, sizeof(int) * (size_t)nv);
         for (int f = 0; f < nf; f++)
             for (int k = 0; k < 3; k++) cx.vf[fill[m->tri[3 * f + k]]++] = f;
-        free(fill);
+        mem_free(fill);
     }
     for (int v = 0; v < nv; v++) { emin[v] = INFINITY; vuv[v] = -1; }
     for (size_t c = 0; c < (size_t)nf * 3; c++) {
@@ -232,8 +233,8 @@ neuv_status mesh_jitter(neuv_mesh *m, uint64_t seed, const jitter_options *opts,
 nomem:
     st = error_set(NEUV_ERR_NOMEM, "out of memory jittering %d faces", nf);
 done:
-    free(emin); free(normal); free(nb); free(bnbr); free(vuv); free(fixed);
-    free(cx.vf_start); free(cx.vf); free(cx.orig_cross);
+    mem_free(emin); mem_free(normal); mem_free(nb); mem_free(bnbr); mem_free(vuv); mem_free(fixed);
+    mem_free(cx.vf_start); mem_free(cx.vf); mem_free(cx.orig_cross);
     mesh_free(orig);
     bvh_free(&tree);
     edge_faces_free(&ef);
@@ -253,12 +254,12 @@ static int corner_of(const neuv_mesh *m, int f, int v)
 static neuv_status flip_edges(neuv_mesh *m, const edge_faces *ef, rng *r, const jitter_options *o, int *flipped)
 {
     int ne = ef->ne;
-    int *order = malloc(sizeof(int) * (size_t)(ne > 0 ? ne : 1));
-    char *touched = calloc((size_t)m->nf, 1);
+    int *order = mem_alloc(sizeof(int) * (size_t)(ne > 0 ? ne : 1));
+    char *touched = mem_calloc((size_t)m->nf, 1);
     edge_map present;
     int map_ok = edge_map_init(&present, (size_t)ne + 16) == 0;
     if (!order || !touched || !map_ok) {
-        free(order); free(touched);
+        mem_free(order); mem_free(touched);
         if (map_ok) edge_map_free(&present);
         return error_set(NEUV_ERR_NOMEM, "out of memory flipping edges");
     }
@@ -315,9 +316,9 @@ static neuv_status flip_edges(neuv_mesh *m, const edge_faces *ef, rng *r, const 
         if (!edge_map_slot(&present, lo, hi, 1, NULL)) goto nomem;
         (*flipped)++;
     }
-    free(order); free(touched); edge_map_free(&present);
+    mem_free(order); mem_free(touched); edge_map_free(&present);
     return NEUV_OK;
 nomem:
-    free(order); free(touched); edge_map_free(&present);
+    mem_free(order); mem_free(touched); edge_map_free(&present);
     return error_set(NEUV_ERR_NOMEM, "out of memory flipping edges");
 }

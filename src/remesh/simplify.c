@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "mesh/edge_map.h"
 
 neuv_status mesh_simplify(const neuv_mesh *m, double ratio, neuv_mesh **out)
@@ -20,9 +21,9 @@ neuv_status mesh_simplify(const neuv_mesh *m, double ratio, neuv_mesh **out)
     int has_uv = m->nuv > 0 && m->tri_uv;
     size_t nc = (size_t)m->nf * 3;
     /* Wedges: one simplifier vertex per distinct (vertex, UV) pair. */
-    unsigned *idx = malloc(sizeof(unsigned) * nc), *dst = malloc(sizeof(unsigned) * nc);
-    int *wedge_v = malloc(sizeof(int) * nc), *wedge_uv = malloc(sizeof(int) * nc);
-    float *fpos = malloc(sizeof(float) * 3 * nc);
+    unsigned *idx = mem_alloc(sizeof(unsigned) * nc), *dst = mem_alloc(sizeof(unsigned) * nc);
+    int *wedge_v = mem_alloc(sizeof(int) * nc), *wedge_uv = mem_alloc(sizeof(int) * nc);
+    float *fpos = mem_alloc(sizeof(float) * 3 * nc);
     edge_map map;
     int map_ok = has_uv ? edge_map_init(&map, nc) == 0 : 1;
     neuv_status st = NEUV_OK;
@@ -50,8 +51,8 @@ neuv_status mesh_simplify(const neuv_mesh *m, double ratio, neuv_mesh **out)
     float err = 0;
     /* target_error 1 (the whole extent): the face count is the only stop. */
     size_t nidx = meshopt_simplify(dst, idx, nc, fpos, (size_t)nw, sizeof(float) * 3, target * 3, 1.0f, 0, &err);
-    vmap = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
-    uvmap = malloc(sizeof(int) * (size_t)(m->nuv > 0 ? m->nuv : 1));
+    vmap = mem_alloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+    uvmap = mem_alloc(sizeof(int) * (size_t)(m->nuv > 0 ? m->nuv : 1));
     if (!vmap || !uvmap) goto nomem;
     for (int v = 0; v < m->nv; v++) vmap[v] = -1;
     for (int u = 0; u < m->nuv; u++) uvmap[u] = -1;
@@ -86,7 +87,7 @@ neuv_status mesh_simplify(const neuv_mesh *m, double ratio, neuv_mesh **out)
 nomem:
     st = error_set(NEUV_ERR_NOMEM, "out of memory simplifying %d faces", m->nf);
 done:
-    free(idx); free(dst); free(wedge_v); free(wedge_uv); free(fpos); free(vmap); free(uvmap);
+    mem_free(idx); mem_free(dst); mem_free(wedge_v); mem_free(wedge_uv); mem_free(fpos); mem_free(vmap); mem_free(uvmap);
     if (has_uv && map_ok) edge_map_free(&map);
     return st;
 }

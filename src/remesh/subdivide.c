@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "mesh/edge_faces.h"
 #include "mesh/edge_map.h"
 
@@ -15,7 +16,7 @@ static neuv_status subdivide_uv(const neuv_mesh *m, int *tri_uv_out, double **uv
     size_t nc = (size_t)m->nf * 3;
     edge_map map;
     if (edge_map_init(&map, nc / 2 + 1)) return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs");
-    int *mid = malloc(sizeof(int) * (nc + 1));
+    int *mid = mem_alloc(sizeof(int) * (nc + 1));
     if (!mid) { edge_map_free(&map); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
     int count = m->nuv;
     for (size_t c = 0; c < nc; c++) {
@@ -23,13 +24,13 @@ static neuv_status subdivide_uv(const neuv_mesh *m, int *tri_uv_out, double **uv
         int a = m->tri_uv[c], b = m->tri_uv[3 * f + (c % 3 + 1) % 3];
         int lo = a < b ? a : b, hi = a < b ? b : a, inserted;
         int *slot = edge_map_slot(&map, lo, hi, count, &inserted);
-        if (!slot) { free(mid); edge_map_free(&map); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
+        if (!slot) { mem_free(mid); edge_map_free(&map); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
         if (inserted) count++;
         mid[c] = *slot;
     }
     edge_map_free(&map);
-    double *uv = malloc(sizeof(double) * 2 * (size_t)count);
-    if (!uv) { free(mid); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)count);
+    if (!uv) { mem_free(mid); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
     memcpy(uv, m->uv, sizeof(double) * 2 * (size_t)m->nuv);
     for (size_t c = 0; c < nc; c++) {
         size_t f = c / 3;
@@ -45,7 +46,7 @@ static neuv_status subdivide_uv(const neuv_mesh *m, int *tri_uv_out, double **uv
         o[6] = t[2]; o[7] = e[2]; o[8] = e[1];
         o[9] = e[0]; o[10] = e[1]; o[11] = e[2];
     }
-    free(mid);
+    mem_free(mid);
     *uv_out = uv;
     *nuv_out = count;
     return NEUV_OK;
@@ -55,11 +56,11 @@ static neuv_status subdivide_uv(const neuv_mesh *m, int *tri_uv_out, double **uv
 static neuv_status loop_vertex_points(const neuv_mesh *m, const edge_faces *ef, double *pos_out)
 {
     int nv = m->nv;
-    double *sum = calloc((size_t)nv * 3, sizeof(double)), *bsum = calloc((size_t)nv * 3, sizeof(double));
-    int *n = calloc((size_t)nv, sizeof(int)), *nb = calloc((size_t)nv, sizeof(int));
-    char *fixed = calloc((size_t)nv, 1);
+    double *sum = mem_calloc((size_t)nv * 3, sizeof(double)), *bsum = mem_calloc((size_t)nv * 3, sizeof(double));
+    int *n = mem_calloc((size_t)nv, sizeof(int)), *nb = mem_calloc((size_t)nv, sizeof(int));
+    char *fixed = mem_calloc((size_t)nv, 1);
     if (!sum || !bsum || !n || !nb || !fixed) {
-        free(sum); free(bsum); free(n); free(nb); free(fixed);
+        mem_free(sum); mem_free(bsum); mem_free(n); mem_free(nb); mem_free(fixed);
         return error_set(NEUV_ERR_NOMEM, "out of memory in Loop subdivision");
     }
     for (int e = 0; e < ef->ne; e++) {
@@ -90,7 +91,7 @@ static neuv_status loop_vertex_points(const neuv_mesh *m, const edge_faces *ef, 
         double beta = (0.625 - c * c) / n[v];
         for (int i = 0; i < 3; i++) q[i] = (1 - n[v] * beta) * p[i] + beta * sum[3 * (size_t)v + i];
     }
-    free(sum); free(bsum); free(n); free(nb); free(fixed);
+    mem_free(sum); mem_free(bsum); mem_free(n); mem_free(nb); mem_free(fixed);
     return NEUV_OK;
 }
 
@@ -139,7 +140,7 @@ static neuv_status subdivide_once(const neuv_mesh *m, subdivide_scheme scheme, n
     }
     edge_faces_free(&ef);
     if (m->nuv > 0 && m->tri_uv) {
-        o->tri_uv = malloc(sizeof(int) * 12 * (size_t)m->nf);
+        o->tri_uv = mem_alloc(sizeof(int) * 12 * (size_t)m->nf);
         if (!o->tri_uv) { mesh_free(o); return error_set(NEUV_ERR_NOMEM, "out of memory subdividing UVs"); }
         if ((st = subdivide_uv(m, o->tri_uv, &o->uv, &o->nuv))) { mesh_free(o); return st; }
     }

@@ -7,6 +7,7 @@
 #include "atlas/convex_hull.h"
 #include "charts/charts.h"
 #include "core/error.h"
+#include "core/mem.h"
 #include "flatten/lscm.h"
 #include "metrics/chart_uv_check.h"
 #include "metrics/uv_metrics.h"
@@ -15,7 +16,7 @@
  * small for a snake or a comb, which the packer cannot nest. */
 static double uv_convexity(const neuv_mesh *sub, const double *uv)
 {
-    int *hull = malloc(sizeof(int) * (size_t)sub->nv);
+    int *hull = mem_alloc(sizeof(int) * (size_t)sub->nv);
     if (!hull) return -1;
     int h = convex_hull_2d(uv, sub->nv, hull);
     double hull_area = 0, area = 0;
@@ -27,7 +28,7 @@ static double uv_convexity(const neuv_mesh *sub, const double *uv)
         const double *a = uv + 2 * sub->tri[3 * f], *b = uv + 2 * sub->tri[3 * f + 1], *c = uv + 2 * sub->tri[3 * f + 2];
         area += (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
     }
-    free(hull);
+    mem_free(hull);
     if (h < 0) return -1;
     return hull_area > 0 ? fabs(area) / hull_area : 1.0;
 }
@@ -46,12 +47,12 @@ neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, int id, 
     int *vmap = NULL, *fmap = NULL;
     neuv_status st = chart_submesh(m, face_chart, id, &sub, &vmap, &fmap);
     if (st) return st;
-    free(vmap);
-    free(fmap);
-    double *uv = malloc(sizeof(double) * 2 * (size_t)sub->nv);
+    mem_free(vmap);
+    mem_free(fmap);
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)sub->nv);
     if (!uv) { mesh_free(sub); return error_nomem("chart UVs"); }
     st = lscm(sub, uv);
-    if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return st; }
+    if (st == NEUV_ERR_NOMEM) { mem_free(uv); mesh_free(sub); return st; }
     if (st == NEUV_OK) {
         /* A chart LSCM cannot flatten stays at qce INFINITY: the split loop
          * then cuts it smaller. */
@@ -71,9 +72,9 @@ neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, int id, 
             if (!st && cvx < 0) st = NEUV_ERR_NOMEM;
             if (!st && convexity) *convexity = cvx;
         }
-        if (st == NEUV_ERR_NOMEM) { free(uv); mesh_free(sub); return error_nomem("chart check"); }
+        if (st == NEUV_ERR_NOMEM) { mem_free(uv); mesh_free(sub); return error_nomem("chart check"); }
     }
-    free(uv);
+    mem_free(uv);
     mesh_free(sub);
     return NEUV_OK;
 }

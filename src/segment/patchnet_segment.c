@@ -20,6 +20,7 @@
 #include "charts/charts.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 #include "segment/chart_judge.h"
 
@@ -29,13 +30,13 @@ static neuv_status grow_quality(double **q, int **flip, int **dirty, int *cap, i
     if (n <= *cap) return NEUV_OK;
     int c = *cap ? *cap : 16;
     while (c < n) c *= 2;
-    double *nq = realloc(*q, sizeof(double) * (size_t)c);
+    double *nq = mem_realloc(*q, sizeof(double) * (size_t)c);
     if (!nq) return error_nomem("chart qualities");
     *q = nq;
-    int *nfl = realloc(*flip, sizeof(int) * (size_t)c);
+    int *nfl = mem_realloc(*flip, sizeof(int) * (size_t)c);
     if (!nfl) return error_nomem("chart qualities");
     *flip = nfl;
-    int *nd = realloc(*dirty, sizeof(int) * (size_t)c);
+    int *nd = mem_realloc(*dirty, sizeof(int) * (size_t)c);
     if (!nd) return error_nomem("chart qualities");
     *dirty = nd;
     for (int i = *cap; i < c; i++) { nd[i] = 1; nq[i] = INFINITY; nfl[i] = 0; }
@@ -62,11 +63,11 @@ static neuv_status merge_charts(const neuv_mesh *m, double limit, double min_cvx
         chart_adjacency adj;
         if ((st = chart_adjacency_build(m, face_chart, &adj))) break;
         int nc = *n_charts;
-        free(gone); free(moved); free(order); free(len);
-        gone = calloc((size_t)nc, sizeof(int));
-        moved = malloc(sizeof(int) * (size_t)nf);
-        order = malloc(sizeof(int) * (size_t)(adj.n > 0 ? adj.n : 1));
-        len = malloc(sizeof(double) * (size_t)(adj.n > 0 ? adj.n : 1));
+        mem_free(gone); mem_free(moved); mem_free(order); mem_free(len);
+        gone = mem_calloc((size_t)nc, sizeof(int));
+        moved = mem_alloc(sizeof(int) * (size_t)nf);
+        order = mem_alloc(sizeof(int) * (size_t)(adj.n > 0 ? adj.n : 1));
+        len = mem_alloc(sizeof(double) * (size_t)(adj.n > 0 ? adj.n : 1));
         if (!gone || !moved || !order || !len) { chart_adjacency_free(&adj); st = error_nomem("chart merge"); break; }
         /* Insertion order by length, descending (ties: pair order), stable. */
         for (int i = 0; i < adj.n; i++) {
@@ -110,7 +111,7 @@ static neuv_status merge_charts(const neuv_mesh *m, double limit, double min_cvx
         for (int f = 0; f < nf; f++) face_chart[f] = gone[face_chart[f]];
         *n_charts = k;
     }
-    free(gone); free(moved); free(order); free(len);
+    mem_free(gone); mem_free(moved); mem_free(order); mem_free(len);
     return st;
 }
 
@@ -136,8 +137,8 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
             }
         if (st || !auto_k) break;
         /* Failing charts, worst first, each split once this round. */
-        free(count);
-        count = calloc((size_t)*n_charts, sizeof(int));
+        mem_free(count);
+        count = mem_calloc((size_t)*n_charts, sizeof(int));
         if (!count) { st = error_nomem("chart sizes"); break; }
         for (int f = 0; f < m->nf; f++) count[face_chart[f]]++;
         int any = 0;
@@ -180,7 +181,7 @@ static neuv_status refine_charts(const neuv_mesh *m, const patchnet_options *o, 
         }
         rep->chart_check_seconds = now_seconds() - t0;
     }
-    free(q); free(flip); free(dirty); free(count);
+    mem_free(q); mem_free(flip); mem_free(dirty); mem_free(count);
     return st;
 }
 
@@ -194,7 +195,7 @@ neuv_status patchnet_charts_from_model(const patchnet_model *model, const neuv_m
     if (feature_dim) *feature_dim = 0;
     patchnet_report local;
     if (!rep) { rep = &local; memset(rep, 0, sizeof *rep); }
-    int *label = malloc(sizeof(int) * (size_t)m->nf);
+    int *label = mem_alloc(sizeof(int) * (size_t)m->nf);
     if (!label) return error_nomem("patch labels");
     neuv_status st = patchnet_infer_features(model, m, ops, label, vertex_features, feature_dim);
     if (!st) {
@@ -207,8 +208,8 @@ neuv_status patchnet_charts_from_model(const patchnet_model *model, const neuv_m
         rep->label_charts = *n_charts;
         st = refine_charts(m, o, face_chart, n_charts, rep);
     }
-    free(label);
-    if (st && vertex_features) { free(*vertex_features); *vertex_features = NULL; }
+    mem_free(label);
+    if (st && vertex_features) { mem_free(*vertex_features); *vertex_features = NULL; }
     return st;
 }
 

@@ -11,10 +11,10 @@
  *
  * Usage:
  *     patchnet_options o;  patchnet_default_options(&o);
- *     int *chart = malloc(nf * sizeof(int)), n; float *feat; int dim;
+ *     int *chart = mem_alloc(nf * sizeof(int)), n; float *feat; int dim;
  *     patchnet_report rep;
  *     if (patchnet_segment(m, &ops, &o, chart, &n, &feat, &dim, &rep)) ...
- *     free(feat); free(chart); */
+ *     mem_free(feat); mem_free(chart); */
 #ifndef NEUV_SEGMENT_PATCHNET_SEGMENT_H
 #define NEUV_SEGMENT_PATCHNET_SEGMENT_H
 

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "core/mem.h"
 #include "spatial/triangle_closest_point.h"
 
 /* Faces per leaf: small leaves keep the triangle tests few per query. */
@@ -16,7 +17,7 @@
 
 void bvh_free(bvh *b)
 {
-    free(b->nodes); free(b->face); free(b->corner);
+    mem_free(b->nodes); mem_free(b->face); mem_free(b->corner);
     memset(b, 0, sizeof *b);
 }
 
@@ -121,14 +122,14 @@ neuv_status bvh_build(bvh *b, const neuv_mesh *m)
     memset(b, 0, sizeof *b);
     if (m->nf <= 0) return error_set(NEUV_ERR_INPUT, "cannot build a BVH over a mesh without faces");
     int nf = m->nf;
-    double *cen = malloc(sizeof(double) * 3 * (size_t)nf);
-    double *lo = malloc(sizeof(double) * 3 * (size_t)nf), *hi = malloc(sizeof(double) * 3 * (size_t)nf);
-    int *stack = malloc(sizeof(int) * 4 * (size_t)(2 * nf));
-    b->nodes = malloc(sizeof(bvh_node) * (size_t)(2 * nf));
-    b->face = malloc(sizeof(int) * (size_t)nf);
-    b->corner = malloc(sizeof(double) * 9 * (size_t)nf);
+    double *cen = mem_alloc(sizeof(double) * 3 * (size_t)nf);
+    double *lo = mem_alloc(sizeof(double) * 3 * (size_t)nf), *hi = mem_alloc(sizeof(double) * 3 * (size_t)nf);
+    int *stack = mem_alloc(sizeof(int) * 4 * (size_t)(2 * nf));
+    b->nodes = mem_alloc(sizeof(bvh_node) * (size_t)(2 * nf));
+    b->face = mem_alloc(sizeof(int) * (size_t)nf);
+    b->corner = mem_alloc(sizeof(double) * 9 * (size_t)nf);
     if (!cen || !lo || !hi || !stack || !b->nodes || !b->face || !b->corner) {
-        free(cen); free(lo); free(hi); free(stack); bvh_free(b);
+        mem_free(cen); mem_free(lo); mem_free(hi); mem_free(stack); bvh_free(b);
         return error_set(NEUV_ERR_NOMEM, "out of memory building a BVH over %d faces", nf);
     }
     b->nf = nf;
@@ -186,7 +187,7 @@ neuv_status bvh_build(bvh *b, const neuv_mesh *m)
         for (int k = 0; k < 3; k++)
             memcpy(b->corner + 9 * (size_t)j + 3 * k, m->pos + 3 * (size_t)m->tri[3 * f + k], sizeof(double) * 3);
     }
-    free(cen); free(lo); free(hi); free(stack);
+    mem_free(cen); mem_free(lo); mem_free(hi); mem_free(stack);
     return NEUV_OK;
 }
 

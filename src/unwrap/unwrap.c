@@ -12,6 +12,7 @@
 #include "charts/charts.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 #include "flatten/harmonic.h"
 #include "flatten/lscm.h"
@@ -45,8 +46,8 @@ void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt,
 {
     if (r->n_repairs == r->cap_repairs) {
         int cap = r->cap_repairs ? 2 * r->cap_repairs : 16;
-        unwrap_repair *nr = realloc(r->repairs, sizeof *nr * (size_t)cap);
-        if (!nr) return;
+        unwrap_repair *nr = mem_realloc(r->repairs, sizeof *nr * (size_t)cap);
+        if (!nr) { r->repairs_lost = 1; return; }
         r->repairs = nr;
         r->cap_repairs = cap;
     }
@@ -62,9 +63,9 @@ void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt,
 void unwrap_piece_clear(chart_piece *p)
 {
     mesh_free(p->sub);
-    free(p->vmap);
-    free(p->fmap);
-    free(p->uv);
+    mem_free(p->vmap);
+    mem_free(p->fmap);
+    mem_free(p->uv);
     memset(p, 0, sizeof *p);
     p->net = -1;
     p->net_qce = NAN;
@@ -81,7 +82,7 @@ neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id
     p->net_depth = net_depth;
     neuv_status s = chart_submesh(m, face_chart, id, &p->sub, &p->vmap, &p->fmap);
     if (s != NEUV_OK) return s;
-    p->uv = calloc((size_t)p->sub->nv * 2, sizeof(double));
+    p->uv = mem_calloc((size_t)p->sub->nv * 2, sizeof(double));
     return p->uv ? NEUV_OK : error_nomem("chart UVs");
 }
 
@@ -118,7 +119,7 @@ static int grow_pieces(chart_piece **pieces, int *cap, int need)
     if (need <= *cap) return 0;
     int nc = *cap ? *cap : 16;
     while (nc < need) nc *= 2;
-    chart_piece *np = realloc(*pieces, sizeof *np * (size_t)nc);
+    chart_piece *np = mem_realloc(*pieces, sizeof *np * (size_t)nc);
     if (!np) return -1;
     memset(np + *cap, 0, sizeof *np * (size_t)(nc - *cap));
     for (int i = *cap; i < nc; i++) { np[i].net = -1; np[i].net_qce = NAN; np[i].lscm_qce = NAN; }
@@ -139,7 +140,7 @@ static int piece_accepts(void *user, int chart, const double *corner_uv)
 {
     (void)chart;
     const chart_piece *p = user;
-    double *uv = malloc(sizeof(double) * 2 * (size_t)p->sub->nv);
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)p->sub->nv);
     if (!uv) return -1;
     for (int f = 0; f < p->sub->nf; f++)
         for (int k = 0; k < 3; k++) {
@@ -149,7 +150,7 @@ static int piece_accepts(void *user, int chart, const double *corner_uv)
         }
     chart_uv_check chk;
     int ok = chart_uv_check_run(p->sub, uv, &chk);
-    free(uv);
+    mem_free(uv);
     return ok < 0 ? -1 : ok && !chk.mirrored;
 }
 
@@ -165,17 +166,17 @@ static int piece_accepts(void *user, int chart, const double *corner_uv)
 static neuv_status refine_conformal_step(chart_piece *p)
 {
     size_t bytes = sizeof(double) * 2 * (size_t)p->sub->nv;
-    double *solved = malloc(bytes);
+    double *solved = mem_alloc(bytes);
     if (!solved) return error_nomem("chart UVs");
     neuv_status s = lscm_anchored(p->sub, p->uv, REFINE_ANCHOR_LAMBDA, solved);
-    if (s == NEUV_ERR_NOMEM) { free(solved); return s; }
+    if (s == NEUV_ERR_NOMEM) { mem_free(solved); return s; }
     if (s == NEUV_OK) {
         chart_uv_check chk;
         int ok = chart_uv_check_run(p->sub, solved, &chk);
         if (ok < 0) s = error_nomem("chart check");
         else if (ok && !chk.mirrored) memcpy(p->uv, solved, bytes);
     }
-    free(solved);
+    mem_free(solved);
     return s == NEUV_ERR_NOMEM ? s : NEUV_OK; /* a failed solve keeps the networks' map */
 }
 
@@ -196,21 +197,21 @@ neuv_status unwrap_refine_piece(chart_piece *p, int steps, uv_refine_report *rep
 
 neuv_status unwrap_piece_lscm_qce(chart_piece *p)
 {
-    double *uv = malloc(sizeof(double) * 2 * (size_t)p->sub->nv);
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)p->sub->nv);
     if (!uv) return error_nomem("chart UVs");
     neuv_status s = lscm(p->sub, uv);
     if (s == NEUV_OK) p->lscm_qce = chart_qce_mean(p->sub, uv, NULL);
-    free(uv);
+    mem_free(uv);
     return s == NEUV_ERR_NOMEM ? s : NEUV_OK; /* a failed solve leaves NaN */
 }
 
 neuv_status unwrap_keep_provenance(struct neuv_unwrap_result *r, const chart_piece *pieces)
 {
     size_t n = (size_t)(r->n_charts > 0 ? r->n_charts : 1);
-    free(r->chart_source); free(r->chart_net_qce); free(r->chart_lscm_qce);
-    r->chart_source = malloc(sizeof(int) * n);
-    r->chart_net_qce = malloc(sizeof(double) * n);
-    r->chart_lscm_qce = malloc(sizeof(double) * n);
+    mem_free(r->chart_source); mem_free(r->chart_net_qce); mem_free(r->chart_lscm_qce);
+    r->chart_source = mem_alloc(sizeof(int) * n);
+    r->chart_net_qce = mem_alloc(sizeof(double) * n);
+    r->chart_lscm_qce = mem_alloc(sizeof(double) * n);
     if (!r->chart_source || !r->chart_net_qce || !r->chart_lscm_qce) return error_nomem("chart provenance");
     r->neural_charts = 0;
     for (int c = 0; c < r->n_charts; c++) {
@@ -319,9 +320,9 @@ neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_c
 {
     int nuv = 0;
     for (int c = 0; c < n_charts; c++) nuv += pieces[c].sub->nv;
-    double *uv = malloc(sizeof(double) * 2 * (size_t)nuv);
-    int *tri_uv = malloc(sizeof(int) * 3 * (size_t)m->nf);
-    if (!uv || !tri_uv) { free(uv); free(tri_uv); return error_nomem("UVs"); }
+    double *uv = mem_alloc(sizeof(double) * 2 * (size_t)nuv);
+    int *tri_uv = mem_alloc(sizeof(int) * 3 * (size_t)m->nf);
+    if (!uv || !tri_uv) { mem_free(uv); mem_free(tri_uv); return error_nomem("UVs"); }
     int base = 0;
     neuv_status s = NEUV_OK;
     for (int c = 0; c < n_charts && s == NEUV_OK; c++) {
@@ -339,8 +340,8 @@ neuv_status unwrap_assemble_uvs(neuv_mesh *m, const chart_piece *pieces, int n_c
         base += p->sub->nv;
     }
     if (s == NEUV_OK) s = mesh_set_uv(m, nuv, uv, tri_uv);
-    free(uv);
-    free(tri_uv);
+    mem_free(uv);
+    mem_free(tri_uv);
     return s;
 }
 
@@ -370,13 +371,13 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
     r->pack_split_trials = rep.trials;
     if (r->n_charts > before && r->chart_source) {
         /* A piece keeps its parent's map, so its source; the qce figures are the parent's. */
-        int *src = realloc(r->chart_source, sizeof(int) * (size_t)r->n_charts);
+        int *src = mem_realloc(r->chart_source, sizeof(int) * (size_t)r->n_charts);
         if (src) r->chart_source = src;
-        double *nq = realloc(r->chart_net_qce, sizeof(double) * (size_t)r->n_charts);
+        double *nq = mem_realloc(r->chart_net_qce, sizeof(double) * (size_t)r->n_charts);
         if (nq) r->chart_net_qce = nq;
-        double *lq = realloc(r->chart_lscm_qce, sizeof(double) * (size_t)r->n_charts);
+        double *lq = mem_realloc(r->chart_lscm_qce, sizeof(double) * (size_t)r->n_charts);
         if (lq) r->chart_lscm_qce = lq;
-        if (!src || !nq || !lq) { free(parent); return error_nomem("chart provenance"); }
+        if (!src || !nq || !lq) { mem_free(parent); return error_nomem("chart provenance"); }
         for (int c = before; c < r->n_charts; c++) {
             r->chart_source[c] = r->chart_source[parent[c]];
             r->chart_net_qce[c] = r->chart_net_qce[parent[c]];
@@ -384,17 +385,17 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
         }
     }
     if (r->n_charts > before && r->chart_net) {
-        int *net = realloc(r->chart_net, sizeof(int) * (size_t)r->n_charts);
+        int *net = mem_realloc(r->chart_net, sizeof(int) * (size_t)r->n_charts);
         if (net) r->chart_net = net;
-        int *mir = realloc(r->chart_mirrored, sizeof(int) * (size_t)r->n_charts);
+        int *mir = mem_realloc(r->chart_mirrored, sizeof(int) * (size_t)r->n_charts);
         if (mir) r->chart_mirrored = mir;
-        if (!net || !mir) { free(parent); return error_nomem("the model"); }
+        if (!net || !mir) { mem_free(parent); return error_nomem("the model"); }
         for (int c = before; c < r->n_charts; c++) {
             r->chart_net[c] = r->chart_net[parent[c]];
             r->chart_mirrored[c] = r->chart_mirrored[parent[c]];
         }
     }
-    free(parent);
+    mem_free(parent);
     return NEUV_OK;
 }
 
@@ -437,7 +438,7 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
     if (log_cancelled()) { operators_free(&ops); return error_cancelled(); }
 
     t = now_seconds();
-    r->face_chart = malloc(sizeof(int) * (size_t)m->nf);
+    r->face_chart = mem_alloc(sizeof(int) * (size_t)m->nf);
     if (!r->face_chart) { operators_free(&ops); return error_nomem("charts"); }
     patchnet_options po;
     patchnet_default_options(&po);
@@ -457,8 +458,8 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
                                        &feature_dim, &prep);
         prep.k = category->patchnet->k;
     } else if (keep_model) {
-        r->patchnet = calloc(1, sizeof *r->patchnet);
-        r->face_label = malloc(sizeof(int) * (size_t)m->nf);
+        r->patchnet = mem_calloc(1, sizeof *r->patchnet);
+        r->face_label = mem_alloc(sizeof(int) * (size_t)m->nf);
         if (!r->patchnet || !r->face_label) { operators_free(&ops); return error_nomem("the model"); }
     }
     if (!category) {
@@ -475,7 +476,7 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
     r->patch_iters_per_second = prep.iters_per_second;
     r->total_seconds = stage_total(r);
     if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
-    if (s != NEUV_OK) { free(features); return s; }
+    if (s != NEUV_OK) { mem_free(features); return s; }
     *features_out = features;
     *feature_dim_out = feature_dim;
     return NEUV_OK;
@@ -491,7 +492,7 @@ neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, int keep_model, con
     double t = now_seconds();
     r->refine_seconds = 0;
     if (o->method == NEUV_METHOD_NEURAL) {
-        corner_uv = malloc(sizeof(double) * 6 * (size_t)m->nf);
+        corner_uv = mem_alloc(sizeof(double) * 6 * (size_t)m->nf);
         if (!corner_uv) return error_nomem("UVs");
         param_net_options pp;
         param_net_default_options(&pp, o->preset == NEUV_PRESET_PAPER ? PARAM_PRESET_PAPER : PARAM_PRESET_FAST);
@@ -518,18 +519,18 @@ neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, int keep_model, con
     }
     r->seconds[STAGE_PARAM] = now_seconds() - t;
     if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
-    if (s != NEUV_OK) { free(corner_uv); return s; }
+    if (s != NEUV_OK) { mem_free(corner_uv); return s; }
 
     t = now_seconds();
     chart_piece *pieces = NULL;
     int cap = 0;
     s = flatten_and_repair(r, m, corner_uv, &pieces, &cap);
-    free(corner_uv);
+    mem_free(corner_uv);
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     if (s == NEUV_OK && keep_model) {
-        r->chart_net = malloc(sizeof(int) * (size_t)r->n_charts);
-        r->chart_mirrored = malloc(sizeof(int) * (size_t)r->n_charts);
+        r->chart_net = mem_alloc(sizeof(int) * (size_t)r->n_charts);
+        r->chart_mirrored = mem_alloc(sizeof(int) * (size_t)r->n_charts);
         if (!r->chart_net || !r->chart_mirrored) s = error_nomem("the model");
         for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) {
             r->chart_net[c] = pieces[c].net;
@@ -537,12 +538,13 @@ neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, int keep_model, con
         }
     }
     for (int c = 0; c < cap; c++) unwrap_piece_clear(&pieces[c]);
-    free(pieces);
+    mem_free(pieces);
     /* The refinement ran chart by chart in the repair loop; it belongs to the parameterization. */
     r->seconds[STAGE_REPAIR] = now_seconds() - t - r->refine_seconds;
     r->seconds[STAGE_PARAM] += r->refine_seconds;
     r->total_seconds = stage_total(r);
     if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
+    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     return s;
 }
 
@@ -554,8 +556,8 @@ neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r)
     double t = now_seconds();
     log_progress("pack", 0, "%d charts", r->n_charts);
     if ((s = split_for_packing(r, m)) != NEUV_OK) return s;
-    free(r->transforms);
-    r->transforms = calloc((size_t)r->n_charts, sizeof *r->transforms);
+    mem_free(r->transforms);
+    r->transforms = mem_calloc((size_t)r->n_charts, sizeof *r->transforms);
     if (!r->transforms) return error_nomem("chart transforms");
     atlas_pack_options pk;
     atlas_pack_options_default(&pk);
@@ -570,6 +572,7 @@ neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r)
     s = unwrap_metrics(m, &r->metrics);
     r->seconds[STAGE_METRICS] = now_seconds() - t;
     r->total_seconds = stage_total(r);
+    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     return s;
 }
 
@@ -583,7 +586,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
     int feature_dim = 0;
     neuv_status s = unwrap_stage_charts(r, in, keep_model, category, &features, &feature_dim);
     if (s == NEUV_OK) s = unwrap_stage_param(r, keep_model, category, finetune, features, feature_dim);
-    free(features);
+    mem_free(features);
     if (s == NEUV_OK) s = unwrap_stage_pack(r);
     return s;
 }
@@ -591,7 +594,7 @@ static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *i
 static void *copy_block(const void *src, size_t bytes, int *failed)
 {
     if (!src) return NULL;
-    void *d = malloc(bytes ? bytes : 1);
+    void *d = mem_alloc(bytes ? bytes : 1);
     if (!d) { *failed = 1; return NULL; }
     memcpy(d, src, bytes);
     return d;
@@ -600,7 +603,7 @@ static void *copy_block(const void *src, size_t bytes, int *failed)
 neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_unwrap_result **out)
 {
     *out = NULL;
-    struct neuv_unwrap_result *c = calloc(1, sizeof *c);
+    struct neuv_unwrap_result *c = mem_calloc(1, sizeof *c);
     if (!c) return error_nomem("the result");
     *c = *r;
     c->chart_net = c->chart_mirrored = c->face_label = NULL;
@@ -625,14 +628,14 @@ neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_
 neuv_status unwrap_result_new(const neuv_unwrap_options *opts, struct neuv_unwrap_result **out)
 {
     *out = NULL;
-    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
+    struct neuv_unwrap_result *r = mem_calloc(1, sizeof *r);
     if (!r) return error_nomem("the result");
     if (opts) r->opts = *opts;
     else neuv_unwrap_options_init(&r->opts);
     if (r->opts.resolution < 64 || r->opts.resolution > 16384)
-        { free(r); return error_set(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
+        { mem_free(r); return error_set(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
     if (r->opts.padding < 0 || r->opts.padding > r->opts.resolution / 8)
-        { free(r); return error_set(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
+        { mem_free(r); return error_set(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
     if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;
     *out = r;
@@ -648,6 +651,7 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
     neuv_status s = unwrap_result_new(opts, &r);
     if (s != NEUV_OK) return s;
     s = run_pipeline(r, mesh, keep_model, NULL, 0);
+    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     *out = r;
     return NEUV_OK;
@@ -660,7 +664,7 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
     if (!category || !category->category || !category->patchnet || !category->param)
         return error_set(NEUV_ERR_INPUT, "not a category model");
-    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
+    struct neuv_unwrap_result *r = mem_calloc(1, sizeof *r);
     if (!r) return error_nomem("the result");
     neuv_unwrap_options_init(&r->opts);
     r->opts.method = NEUV_METHOD_NEURAL;
@@ -682,6 +686,7 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
     r->model.finetune = finetune;
     r->model.shared_layer = shared_layer;
     neuv_status s = run_pipeline(r, mesh, 0, category, finetune);
+    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     r->model.network_charts = r->neural_charts;
     r->model.inference_seconds = r->total_seconds - r->seconds[STAGE_METRICS];
@@ -696,17 +701,17 @@ void neuv_unwrap_result_free(neuv_unwrap_result *r)
 {
     if (!r) return;
     mesh_free(r->mesh);
-    free(r->face_chart);
-    free(r->transforms);
-    free(r->repairs);
-    free(r->chart_net);
-    free(r->chart_mirrored);
-    free(r->chart_source);
-    free(r->chart_net_qce);
-    free(r->chart_lscm_qce);
-    free(r->face_label);
+    mem_free(r->face_chart);
+    mem_free(r->transforms);
+    mem_free(r->repairs);
+    mem_free(r->chart_net);
+    mem_free(r->chart_mirrored);
+    mem_free(r->chart_source);
+    mem_free(r->chart_net_qce);
+    mem_free(r->chart_lscm_qce);
+    mem_free(r->face_label);
     if (r->patchnet) patchnet_model_free(r->patchnet);
-    free(r->patchnet);
+    mem_free(r->patchnet);
     param_net_model_free(r->param);
-    free(r);
+    mem_free(r);
 }

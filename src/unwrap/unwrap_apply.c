@@ -12,6 +12,7 @@
 #include "charts/face_graph.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 #include "core/union_find.h"
 #include "flatten/harmonic.h"
@@ -47,13 +48,13 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
     neuv_status s = bvh_build(&b, md->source);
     if (s) return s;
     size_t np = 4 * (size_t)m->nf > (size_t)m->nv ? 4 * (size_t)m->nf : (size_t)m->nv;
-    double *pt = malloc(sizeof(double) * 3 * np);
-    double *d2 = malloc(sizeof(double) * np);
-    int *sf = malloc(sizeof(int) * np);
-    double *fn = malloc(sizeof(double) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
-    double *vn = calloc(3 * (size_t)(m->nv > 0 ? m->nv : 1), sizeof(double));
+    double *pt = mem_alloc(sizeof(double) * 3 * np);
+    double *d2 = mem_alloc(sizeof(double) * np);
+    int *sf = mem_alloc(sizeof(int) * np);
+    double *fn = mem_alloc(sizeof(double) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
+    double *vn = mem_calloc(3 * (size_t)(m->nv > 0 ? m->nv : 1), sizeof(double));
     if (!pt || !d2 || !sf || !fn || !vn) {
-        free(pt); free(d2); free(sf); free(fn); free(vn); bvh_free(&b);
+        mem_free(pt); mem_free(d2); mem_free(sf); mem_free(fn); mem_free(vn); bvh_free(&b);
         return error_nomem("chart transfer");
     }
     /* Face normals (area-weighted) and vertex normals: each point looks for
@@ -102,7 +103,7 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
 #pragma omp parallel for schedule(dynamic, 256)
     for (int v = 0; v < m->nv; v++) bvh_closest_point_facing(&b, m->pos + 3 * (size_t)v, vn + 3 * (size_t)v, sf + v, NULL, NULL);
     for (int v = 0; v < m->nv; v++) vertex_chart[v] = md->face_chart[sf[v]];
-    free(pt); free(d2); free(sf); free(fn); free(vn);
+    mem_free(pt); mem_free(d2); mem_free(sf); mem_free(fn); mem_free(vn);
     bvh_free(&b);
     return NEUV_OK;
 }
@@ -116,13 +117,13 @@ static int merge_fragments(const neuv_mesh *m, const face_graph *g, int *face_ch
 {
     int nf = m->nf, merged = 0;
     union_find u;
-    int *comp = malloc(sizeof(int) * (size_t)nf);
-    double *carea = malloc(sizeof(double) * (size_t)nf);
-    int *best = malloc(sizeof(int) * (size_t)n_labels);
-    double *share = calloc((size_t)n_labels, sizeof(double));
-    int *order = malloc(sizeof(int) * (size_t)nf);
+    int *comp = mem_alloc(sizeof(int) * (size_t)nf);
+    double *carea = mem_alloc(sizeof(double) * (size_t)nf);
+    int *best = mem_alloc(sizeof(int) * (size_t)n_labels);
+    double *share = mem_calloc((size_t)n_labels, sizeof(double));
+    int *order = mem_alloc(sizeof(int) * (size_t)nf);
     if (!comp || !carea || !best || !share || !order || uf_init(&u, nf)) {
-        free(comp); free(carea); free(best); free(share); free(order);
+        mem_free(comp); mem_free(carea); mem_free(best); mem_free(share); mem_free(order);
         return -1;
     }
     for (int round = 0; round < 8; round++) {
@@ -133,6 +134,7 @@ static int merge_fragments(const neuv_mesh *m, const face_graph *g, int *face_ch
                 if (h >= 0 && face_chart[h] == face_chart[f]) uf_union(&u, f, h);
             }
         int nc = uf_labels(&u, comp);
+        if (nc < 0) { merged = -1; break; }
         for (int c = 0; c < nc; c++) carea[c] = 0;
         for (int f = 0; f < nf; f++) carea[comp[f]] += g->area[f];
         for (int l = 0; l < n_labels; l++) best[l] = -1;
@@ -176,7 +178,7 @@ static int merge_fragments(const neuv_mesh *m, const face_graph *g, int *face_ch
         if (!changed) break;
     }
     uf_free(&u);
-    free(comp); free(carea); free(best); free(share); free(order);
+    mem_free(comp); mem_free(carea); mem_free(best); mem_free(share); mem_free(order);
     return merged;
 }
 
@@ -222,7 +224,7 @@ static neuv_status source_island_open(const unwrap_model *md, int mc, source_isl
     memset(is, 0, sizeof *is);
     neuv_status s = chart_submesh(md->source, md->face_chart, mc, &is->sub, &is->vmap, &is->fmap);
     if (s) return s;
-    is->uv = malloc(sizeof(double) * 2 * (size_t)is->sub->nv);
+    is->uv = mem_alloc(sizeof(double) * 2 * (size_t)is->sub->nv);
     if (!is->uv) return error_nomem("UV transfer");
     /* A chart is one island: one UV per vertex. */
     for (int f = 0; f < is->sub->nf; f++)
@@ -238,7 +240,7 @@ static void source_island_close(source_island *is)
 {
     if (is->ready) bvh_free(&is->tree);
     mesh_free(is->sub);
-    free(is->vmap); free(is->fmap); free(is->uv);
+    mem_free(is->vmap); mem_free(is->fmap); mem_free(is->uv);
     memset(is, 0, sizeof *is);
 }
 
@@ -263,13 +265,13 @@ static neuv_status source_chart_uvs(const unwrap_model *md, int mc, const chart_
     source_island is;
     neuv_status s = source_island_open(md, mc, &is);
     int n = p->sub->nv;
-    int *face = malloc(sizeof(int) * (size_t)n);
-    double *bary = malloc(sizeof(double) * 3 * (size_t)n), *sd = NULL;
+    int *face = mem_alloc(sizeof(int) * (size_t)n);
+    double *bary = mem_alloc(sizeof(double) * 3 * (size_t)n), *sd = NULL;
     if (s == NEUV_OK && (!face || !bary)) s = error_nomem("UV transfer");
     const neuv_mesh *ssub = is.sub;
     const double *suv = is.uv;
     if (s == NEUV_OK && delta) {
-        sd = malloc(sizeof(double) * 2 * (size_t)ssub->nv);
+        sd = mem_alloc(sizeof(double) * 2 * (size_t)ssub->nv);
         if (!sd) s = error_nomem("UV transfer");
         else s = param_net_apply(md->param, md->chart_net[mc], ssub->pos, ssub->nv, sd);
         for (int v = 0; s == NEUV_OK && v < ssub->nv; v++) {
@@ -302,7 +304,7 @@ static neuv_status source_chart_uvs(const unwrap_model *md, int mc, const chart_
         }
     }
     source_island_close(&is);
-    free(face); free(bary); free(sd);
+    mem_free(face); mem_free(bary); mem_free(sd);
     return s;
 }
 
@@ -338,9 +340,9 @@ static int settle_border_faces(const neuv_mesh *m, const unwrap_model *md, const
 {
     int nf = m->nf, moved = 0;
     *st = NEUV_OK;
-    source_island *is = calloc((size_t)md->n_charts, sizeof *is);
-    unsigned char *border = malloc((size_t)(nf > 0 ? nf : 1));
-    if (!is || !border) { free(is); free(border); *st = error_nomem("charts"); return -1; }
+    source_island *is = mem_calloc((size_t)md->n_charts, sizeof *is);
+    unsigned char *border = mem_alloc((size_t)(nf > 0 ? nf : 1));
+    if (!is || !border) { mem_free(is); mem_free(border); *st = error_nomem("charts"); return -1; }
     for (int round = 0; round < 3 && *st == NEUV_OK; round++) {
         int changed = 0;
         for (int f = 0; f < nf; f++) {
@@ -367,7 +369,7 @@ static int settle_border_faces(const neuv_mesh *m, const unwrap_model *md, const
         if (!changed) break;
     }
     for (int c = 0; c < md->n_charts; c++) source_island_close(&is[c]);
-    free(is); free(border);
+    mem_free(is); mem_free(border);
     return *st == NEUV_OK ? moved : -1;
 }
 
@@ -404,14 +406,14 @@ static int relax_folds(chart_piece *p, double *scratch)
 {
     const neuv_mesh *c = p->sub;
     int nv = c->nv, nf = c->nf;
-    double *uv0 = malloc(sizeof(double) * 2 * (size_t)nv);
-    int *deg = calloc((size_t)nv + 1, sizeof(int)), *bnd = calloc((size_t)nv, sizeof(int));
-    unsigned char *hot = malloc((size_t)nv);
-    if (!uv0 || !deg || !bnd || !hot) { free(uv0); free(deg); free(bnd); free(hot); return -1; }
+    double *uv0 = mem_alloc(sizeof(double) * 2 * (size_t)nv);
+    int *deg = mem_calloc((size_t)nv + 1, sizeof(int)), *bnd = mem_calloc((size_t)nv, sizeof(int));
+    unsigned char *hot = mem_alloc((size_t)nv);
+    if (!uv0 || !deg || !bnd || !hot) { mem_free(uv0); mem_free(deg); mem_free(bnd); mem_free(hot); return -1; }
     memcpy(uv0, p->uv, sizeof(double) * 2 * (size_t)nv);
     /* Boundary vertices (a directed edge whose twin is missing) stay. */
     edge_map e;
-    if (edge_map_init(&e, (size_t)nf * 3)) { free(uv0); free(deg); free(bnd); free(hot); return -1; }
+    if (edge_map_init(&e, (size_t)nf * 3)) { mem_free(uv0); mem_free(deg); mem_free(bnd); mem_free(hot); return -1; }
     int bad = 0;
     for (int f = 0; f < nf && !bad; f++)
         for (int k = 0; k < 3; k++)
@@ -422,7 +424,7 @@ static int relax_folds(chart_piece *p, double *scratch)
             if (edge_map_get(&e, b, a) < 0) bnd[a] = bnd[b] = 1;
         }
     edge_map_free(&e);
-    if (bad) { free(uv0); free(deg); free(bnd); free(hot); return -1; }
+    if (bad) { mem_free(uv0); mem_free(deg); mem_free(bnd); mem_free(hot); return -1; }
     chart_uv_check chk;
     int ok = 0;
     for (int round = 0; round < 30 && !ok; round++) {
@@ -457,7 +459,7 @@ static int relax_folds(chart_piece *p, double *scratch)
             }
     }
     if (ok <= 0) memcpy(p->uv, uv0, sizeof(double) * 2 * (size_t)nv);
-    free(uv0); free(deg); free(bnd); free(hot);
+    mem_free(uv0); mem_free(deg); mem_free(bnd); mem_free(hot);
     return ok;
 }
 
@@ -521,14 +523,14 @@ static void span_bounds(const neuv_mesh *m, chart_span *sp)
 static neuv_status faces_by_chart(const struct neuv_unwrap_result *r, int **order_out, int **first_out)
 {
     int nf = r->mesh->nf;
-    int *order = malloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
-    int *first = calloc((size_t)r->n_charts + 1, sizeof(int));
-    int *fill = calloc((size_t)r->n_charts + 1, sizeof(int));
-    if (!order || !first || !fill) { free(order); free(first); free(fill); return error_nomem("overlap test"); }
+    int *order = mem_alloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
+    int *first = mem_calloc((size_t)r->n_charts + 1, sizeof(int));
+    int *fill = mem_calloc((size_t)r->n_charts + 1, sizeof(int));
+    if (!order || !first || !fill) { mem_free(order); mem_free(first); mem_free(fill); return error_nomem("overlap test"); }
     for (int f = 0; f < nf; f++) first[r->face_chart[f] + 1]++;
     for (int c = 0; c < r->n_charts; c++) first[c + 1] += first[c];
     for (int f = 0; f < nf; f++) order[first[r->face_chart[f]] + fill[r->face_chart[f]]++] = f;
-    free(fill);
+    mem_free(fill);
     *order_out = order;
     *first_out = first;
     return NEUV_OK;
@@ -563,11 +565,11 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
     neuv_mesh *m = r->mesh;
     int nc = r->n_charts;
     neuv_status s = NEUV_OK;
-    unsigned char *hot = malloc((size_t)(nc > 0 ? nc : 1));
+    unsigned char *hot = mem_alloc((size_t)(nc > 0 ? nc : 1));
     int maxv = 1;
     for (int c = 0; c < nc; c++) if (pieces[c].sub->nv > maxv) maxv = pieces[c].sub->nv;
-    double *keep = malloc(sizeof(double) * 2 * (size_t)maxv), *scratch = malloc(sizeof(double) * 2 * (size_t)maxv);
-    int *pulled = calloc((size_t)(nc > 0 ? nc : 1), sizeof(int));
+    double *keep = mem_alloc(sizeof(double) * 2 * (size_t)maxv), *scratch = mem_alloc(sizeof(double) * 2 * (size_t)maxv);
+    int *pulled = mem_calloc((size_t)(nc > 0 ? nc : 1), sizeof(int));
     if (!hot || !keep || !scratch || !pulled) s = error_nomem("overlap test");
     /* How far past its island a corner may stay, per round: half the gap the
      * packing left between islands, then none. */
@@ -582,7 +584,7 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
         }
         if ((s = overlapping_pairs(r, &pairs, &np))) break;
         for (int k = 0; k < 2 * np; k++) hot[pairs[k]] = 1;
-        free(pairs);
+        mem_free(pairs);
         if (!any && np == 0) break;
         for (int c = 0; c < nc && s == NEUV_OK; c++) {
             if (!hot[c]) continue;
@@ -620,7 +622,7 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
             unwrap_add_repair(r, c, "%d corners past the source chart's seam overlapped or left the atlas; pulled toward "
                               "the source chart's border (the chart stays in place)", pulled[c]);
         }
-    free(hot); free(keep); free(scratch); free(pulled);
+    mem_free(hot); mem_free(keep); mem_free(scratch); mem_free(pulled);
     return s;
 }
 
@@ -632,14 +634,14 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
 static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *span)
 {
     neuv_mesh *m = r->mesh;
-    int *shrunk = calloc((size_t)r->n_charts + 1, sizeof(int));
-    unsigned char *now = malloc((size_t)r->n_charts + 1);
-    if (!shrunk || !now) { free(shrunk); free(now); return error_nomem("overlap test"); }
+    int *shrunk = mem_calloc((size_t)r->n_charts + 1, sizeof(int));
+    unsigned char *now = mem_alloc((size_t)r->n_charts + 1);
+    if (!shrunk || !now) { mem_free(shrunk); mem_free(now); return error_nomem("overlap test"); }
     neuv_status s = NEUV_OK;
     for (int round = 0; round < MAX_SHRINK_ROUNDS; round++) {
         int *pairs = NULL, np = 0;
         if ((s = overlapping_pairs(r, &pairs, &np))) break;
-        if (np == 0) { free(pairs); break; }
+        if (np == 0) { mem_free(pairs); break; }
         memset(now, 0, (size_t)r->n_charts + 1);
         for (int c = 0; c < r->n_charts; c++) span_bounds(m, &span[c]);
         for (int k = 0; k < np; k++) {
@@ -663,13 +665,13 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
             P->moved = 1;
             now[pick] = 1;
         }
-        free(pairs);
+        mem_free(pairs);
     }
     for (int c = 0; c < r->n_charts && s == NEUV_OK; c++)
         if (shrunk[c])
             unwrap_add_repair(r, c, "overlapped a neighbour in the atlas; shrunk to %.3f of its size about its centroid",
                               pow(0.92, shrunk[c]));
-    free(shrunk); free(now);
+    mem_free(shrunk); mem_free(now);
     return s;
 }
 
@@ -701,18 +703,18 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
     int nc = r->n_charts, R = r->opts.resolution > 0 ? r->opts.resolution : 1024, pad = r->opts.padding;
     int *pairs = NULL, np = 0;
     neuv_status s = overlapping_pairs(r, &pairs, &np);
-    if (s || np == 0) { free(pairs); return s; }
+    if (s || np == 0) { mem_free(pairs); return s; }
     int *order = NULL, *first = NULL;
-    if ((s = faces_by_chart(r, &order, &first))) { free(pairs); return s; }
+    if ((s = faces_by_chart(r, &order, &first))) { mem_free(pairs); return s; }
     int maxv = 1, maxf = 1;
     for (int c = 0; c < nc; c++) {
         span_bounds(m, &span[c]);
         if (span[c].count > maxv) maxv = span[c].count;
         if (first[c + 1] - first[c] > maxf) maxf = first[c + 1] - first[c];
     }
-    unsigned char *move = calloc((size_t)nc + 1, 1);
-    double *q = malloc(sizeof(double) * 2 * (size_t)maxv);
-    int *lt = malloc(sizeof(int) * 3 * (size_t)maxf);
+    unsigned char *move = mem_calloc((size_t)nc + 1, 1);
+    double *q = mem_alloc(sizeof(double) * 2 * (size_t)maxv);
+    int *lt = mem_alloc(sizeof(int) * 3 * (size_t)maxf);
     occupancy occ;
     int occ_ok = occupancy_init(&occ, R, pad) == 0;
     if (!move || !q || !lt || !occ_ok) s = error_nomem("chart placement");
@@ -720,7 +722,7 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
         int a = pairs[2 * k], b = pairs[2 * k + 1];
         if (!move[a] && !move[b]) move[span_area(&span[a]) <= span_area(&span[b]) ? a : b] = 1;
     }
-    free(pairs);
+    mem_free(pairs);
     for (int pass = 0; pass < 2 && s == NEUV_OK; pass++) /* the charts that stay, then the ones that move */
         for (int c = 0; c < nc && s == NEUV_OK; c++) {
             if (move[c] != pass || span[c].count == 0) continue;
@@ -774,7 +776,7 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
             }
         }
     if (occ_ok) occupancy_free(&occ);
-    free(order); free(first); free(move); free(q); free(lt);
+    mem_free(order); mem_free(first); mem_free(move); mem_free(q); mem_free(lt);
     return s;
 }
 
@@ -841,7 +843,7 @@ static neuv_status check_inference(struct neuv_unwrap_result *r, const unwrap_mo
     int hit = 0;
     neuv_status s = operators_get(r->mesh, &op, use_cache, &ops, NULL, &hit);
     if (s) return s;
-    int *label = malloc(sizeof(int) * (size_t)r->mesh->nf);
+    int *label = mem_alloc(sizeof(int) * (size_t)r->mesh->nf);
     if (!label) { operators_free(&ops); return error_nomem("labels"); }
     s = patchnet_infer(md->patchnet, r->mesh, &ops, label);
     operators_free(&ops);
@@ -854,7 +856,7 @@ static neuv_status check_inference(struct neuv_unwrap_result *r, const unwrap_mo
         }
         r->model.label_agreement = total > 0 ? agree / total : 0;
     }
-    free(label);
+    mem_free(label);
     return s;
 }
 
@@ -887,12 +889,12 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     /* Charts. */
     t = now_seconds();
     log_progress("patches", 0, "charts from the model's source surface");
-    int *label = malloc(sizeof(int) * (size_t)m->nf);
-    int *src_face = malloc(sizeof(int) * (size_t)m->nf);
-    int *vertex_chart = malloc(sizeof(int) * (size_t)m->nv);
-    r->face_chart = malloc(sizeof(int) * (size_t)m->nf);
+    int *label = mem_alloc(sizeof(int) * (size_t)m->nf);
+    int *src_face = mem_alloc(sizeof(int) * (size_t)m->nf);
+    int *vertex_chart = mem_alloc(sizeof(int) * (size_t)m->nv);
+    r->face_chart = mem_alloc(sizeof(int) * (size_t)m->nf);
     if (!label || !src_face || !vertex_chart || !r->face_chart) {
-        free(label); free(src_face); free(vertex_chart);
+        mem_free(label); mem_free(src_face); mem_free(vertex_chart);
         return error_nomem("charts");
     }
     double dist = 0;
@@ -914,8 +916,8 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         r->model.settled_faces = settled;
     }
     /* Compact ids: source charts that got no face are dropped. */
-    int *model_chart = malloc(sizeof(int) * (size_t)md->n_charts);
-    int *new_id = malloc(sizeof(int) * (size_t)md->n_charts);
+    int *model_chart = mem_alloc(sizeof(int) * (size_t)md->n_charts);
+    int *new_id = mem_alloc(sizeof(int) * (size_t)md->n_charts);
     if (s == NEUV_OK && (!model_chart || !new_id)) s = error_nomem("charts");
     if (s == NEUV_OK) {
         for (int c = 0; c < md->n_charts; c++) new_id[c] = -1;
@@ -926,25 +928,25 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         r->model.empty_charts = md->n_charts - r->n_charts;
         for (int f = 0; f < m->nf; f++) r->face_chart[f] = new_id[label[f]];
     }
-    free(label);
-    free(new_id);
+    mem_free(label);
+    mem_free(new_id);
     r->seconds[STAGE_PATCHES] = now_seconds() - t;
     double t_check = now_seconds();
     if (s == NEUV_OK && o->check_inference) s = check_inference(r, md, src_face, o->use_cache);
-    free(src_face);
-    if (s) { free(model_chart); free(vertex_chart); return s; }
+    mem_free(src_face);
+    if (s) { mem_free(model_chart); mem_free(vertex_chart); return s; }
     t_infer += now_seconds() - t_check; /* the inference time leaves the diagnostic out */
 
     /* UVs of every chart in the source's atlas frame, checked; folded ones repaired. */
     t = now_seconds();
     int cap = r->n_charts + 16;
-    chart_piece *pieces = calloc((size_t)cap, sizeof *pieces);
-    int *repaired = calloc((size_t)cap, sizeof(int));
-    int *mc_grown = realloc(model_chart, sizeof(int) * (size_t)cap);
-    double **anchor = calloc((size_t)cap, sizeof *anchor);
+    chart_piece *pieces = mem_calloc((size_t)cap, sizeof *pieces);
+    int *repaired = mem_calloc((size_t)cap, sizeof(int));
+    int *mc_grown = mem_realloc(model_chart, sizeof(int) * (size_t)cap);
+    double **anchor = mem_calloc((size_t)cap, sizeof *anchor);
     if (mc_grown) model_chart = mc_grown;
     if (!pieces || !repaired || !mc_grown || !anchor) {
-        free(pieces); free(repaired); free(model_chart); free(anchor); free(vertex_chart);
+        mem_free(pieces); mem_free(repaired); mem_free(model_chart); mem_free(anchor); mem_free(vertex_chart);
         return error_nomem("charts");
     }
     /* The source's refinement is carried over (its difference to the networks'
@@ -954,30 +956,30 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     for (int c = 0; c < r->n_charts && s == NEUV_OK; c++) {
         if (r->n_charts >= cap) { /* charts added by splits */
             int nc = 2 * r->n_charts;
-            chart_piece *np = realloc(pieces, sizeof *np * (size_t)nc);
+            chart_piece *np = mem_realloc(pieces, sizeof *np * (size_t)nc);
             if (np) { memset(np + cap, 0, sizeof *np * (size_t)(nc - cap)); pieces = np; }
-            int *nr = realloc(repaired, sizeof(int) * (size_t)nc);
+            int *nr = mem_realloc(repaired, sizeof(int) * (size_t)nc);
             if (nr) { memset(nr + cap, 0, sizeof(int) * (size_t)(nc - cap)); repaired = nr; }
-            int *nm = realloc(model_chart, sizeof(int) * (size_t)nc);
+            int *nm = mem_realloc(model_chart, sizeof(int) * (size_t)nc);
             if (nm) model_chart = nm;
-            double **na = realloc(anchor, sizeof *na * (size_t)nc);
+            double **na = mem_realloc(anchor, sizeof *na * (size_t)nc);
             if (na) { memset(na + cap, 0, sizeof *na * (size_t)(nc - cap)); anchor = na; }
             if (!np || !nr || !nm || !na) { s = error_nomem("charts"); break; }
             cap = nc;
         }
         chart_piece *p = &pieces[c];
         unwrap_piece_clear(p); /* a chart split below is built again */
-        free(anchor[c]);
+        mem_free(anchor[c]);
         anchor[c] = NULL;
         if ((s = unwrap_piece_build(m, r->face_chart, c, p))) break;
         log_progress("param", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
         int mc = model_chart[c], net = md->chart_net[mc], n = p->sub->nv, relaxed = 0;
-        double *target = malloc(sizeof(double) * 2 * (size_t)n), *scratch = malloc(sizeof(double) * 2 * (size_t)n);
-        double *ext = malloc(sizeof(double) * 2 * (size_t)n), *delta = malloc(sizeof(double) * 2 * (size_t)n);
-        double *closest = malloc(sizeof(double) * 3 * (size_t)n);
-        anchor[c] = malloc(sizeof(double) * 2 * (size_t)n);
+        double *target = mem_alloc(sizeof(double) * 2 * (size_t)n), *scratch = mem_alloc(sizeof(double) * 2 * (size_t)n);
+        double *ext = mem_alloc(sizeof(double) * 2 * (size_t)n), *delta = mem_alloc(sizeof(double) * 2 * (size_t)n);
+        double *closest = mem_alloc(sizeof(double) * 3 * (size_t)n);
+        anchor[c] = mem_alloc(sizeof(double) * 2 * (size_t)n);
         if (!target || !scratch || !ext || !delta || !closest || !anchor[c]) {
-            free(target); free(scratch); free(ext); free(delta); free(closest);
+            mem_free(target); mem_free(scratch); mem_free(ext); mem_free(delta); mem_free(closest);
             s = error_nomem("chart UVs");
             break;
         }
@@ -1022,7 +1024,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         } else if (s == NEUV_OK) {
             memcpy(p->uv, ext, sizeof(double) * 2 * (size_t)n);
         }
-        free(delta); free(closest);
+        mem_free(delta); mem_free(closest);
         int baseline = 0, from_source = 0, deviates = 0;
         if (s == NEUV_OK && net >= 0 && !o->lscm_baseline && !o->refine_on_mesh) {
             /* The networks' map at these vertices against the source atlas, which
@@ -1056,7 +1058,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             else if (ok0) { align_similarity(p->uv, target, n); baseline = 1; }
             else memcpy(p->uv, target, sizeof(double) * 2 * (size_t)n);
         }
-        if (s) { free(target); free(scratch); free(ext); break; }
+        if (s) { mem_free(target); mem_free(scratch); mem_free(ext); break; }
         memcpy(target, p->uv, sizeof(double) * 2 * (size_t)n);
         chart_uv_check chk;
         int ok = uv_usable(p, p->uv, scratch, &chk);
@@ -1106,7 +1108,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
                     int before = r->n_charts;
                     s = charts_split(m, r->face_chart, &r->n_charts, c);
                     if (s == NEUV_OK && r->n_charts > cap) {
-                        int *nm = realloc(model_chart, sizeof(int) * (size_t)r->n_charts);
+                        int *nm = mem_realloc(model_chart, sizeof(int) * (size_t)r->n_charts);
                         if (nm) model_chart = nm;
                         else s = error_nomem("charts");
                     }
@@ -1116,11 +1118,11 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
                                       why, r->n_charts - before + 1);
                     c--;
                 }
-                free(target); free(scratch); free(ext);
+                mem_free(target); mem_free(scratch); mem_free(ext);
                 continue;
             }
         }
-        free(ext);
+        mem_free(ext);
         if (ok < 0) s = error_nomem("chart check");
         if (baseline && !relaxed && !repaired[c]) p->source = CHART_SOURCE_LSCM;
         else if (repaired[c]) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
@@ -1130,12 +1132,12 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         if (s == NEUV_OK && chart_source_is_network(p->source)) s = unwrap_piece_lscm_qce(p);
         if (net >= 0 && !repaired[c] && !baseline && !from_source && !deviates) r->model.network_charts++;
         if ((net < 0 || from_source || deviates) && !repaired[c]) r->model.transferred_charts++;
-        free(target); free(scratch);
+        mem_free(target); mem_free(scratch);
     }
     r->model.refinement_carried = carry_refinement;
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
-    chart_span *span = s == NEUV_OK ? calloc((size_t)r->n_charts, sizeof *span) : NULL;
+    chart_span *span = s == NEUV_OK ? mem_calloc((size_t)r->n_charts, sizeof *span) : NULL;
     if (s == NEUV_OK && !span) s = error_nomem("charts");
     for (int c = 0, base = 0; s == NEUV_OK && c < r->n_charts; c++) {
         span[c].first = base;
@@ -1143,25 +1145,25 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         span[c].repaired = repaired[c];
         base += pieces[c].sub->nv;
     }
-    free(repaired);
+    mem_free(repaired);
     r->neural_charts = r->model.network_charts;
     r->seconds[STAGE_PARAM] = now_seconds() - t;
 
     /* The whole atlas: no chart on another, inside the unit square, each
      * chart where the source put it. */
     t = now_seconds();
-    r->transforms = calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *r->transforms);
+    r->transforms = mem_calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *r->transforms);
     if (s == NEUV_OK && !r->transforms) s = error_nomem("chart transforms");
     for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->transforms[c] = md->xf[model_chart[c]];
     /* On a simplified copy's model the copy's layout does not matter, and
      * pulling corners flattens border faces (camelhead: qce_mean 1.020 ->
      * 1.027): the shrinking alone resolves overlaps there. */
     if (s == NEUV_OK && !o->refine_on_mesh) s = pull_past_borders(r, span, pieces, anchor, model_chart, vertex_chart);
-    free(model_chart);
-    for (int c = 0; c < cap; c++) { unwrap_piece_clear(&pieces[c]); free(anchor[c]); }
-    free(pieces);
-    free(anchor);
-    free(vertex_chart);
+    mem_free(model_chart);
+    for (int c = 0; c < cap; c++) { unwrap_piece_clear(&pieces[c]); mem_free(anchor[c]); }
+    mem_free(pieces);
+    mem_free(anchor);
+    mem_free(vertex_chart);
     if (s == NEUV_OK) pull_charts_inside(r, span);
     if (s == NEUV_OK) s = resolve_overlaps(r, span);
     if (s == NEUV_OK) fit_unit_square(r, span);
@@ -1182,7 +1184,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         }
     }
     for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->model.moved_charts += span[c].moved;
-    free(span);
+    mem_free(span);
     if (s == NEUV_OK) {
         uv_coverage cov;
         s = uv_coverage_count(m->uv, m->nf, m->tri_uv, NULL, OVERLAP_RESOLUTION, &cov);
@@ -1219,7 +1221,7 @@ neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *md, const un
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
     unwrap_apply_options def = {0, 1, 0, 0, 0};
     if (!o) o = &def;
-    struct neuv_unwrap_result *r = calloc(1, sizeof *r);
+    struct neuv_unwrap_result *r = mem_calloc(1, sizeof *r);
     if (!r) return error_nomem("the result");
     opts_from_model(&r->opts, md);
     r->opts.threads = o->threads;
@@ -1228,6 +1230,7 @@ neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *md, const un
     r->model.label_agreement = -1;
     if (o->threads > 0) nn_set_threads(o->threads);
     neuv_status s = apply_pipeline(r, mesh, md, o);
+    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     *out = r;
     return NEUV_OK;
@@ -1282,6 +1285,11 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
         for (int i = 0; i < tr->n_repairs; i++)
             unwrap_add_repair(r, -1, "while training on the copy: chart %d: %.120s", tr->repairs[i].chart,
                               tr->repairs[i].what);
+        if (r->repairs_lost) {
+            s = error_nomem("a repair note");
+            neuv_unwrap_result_free(r);
+            *out = NULL;
+        }
     }
     neuv_unwrap_result_free(tr);
     if (s == NEUV_OK && model_out) *model_out = md;

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mem.h"
 #include "core/timer.h"
 #include "geometry/operator_cache.h"
 #include "geometry/operators.h"
@@ -35,8 +36,8 @@ static void category_shape_free(category_shape *c)
 {
     mesh_free(c->mesh);
     operators_free(&c->ops);
-    free(c->face_chart);
-    free(c->features);
+    mem_free(c->face_chart);
+    mem_free(c->features);
 }
 
 /* The shapes side by side as one mesh (each a component), with chart ids and
@@ -47,9 +48,9 @@ static neuv_status join_shapes(const category_shape *sh, int n, neuv_mesh **join
     int nv = 0, nf = 0, dim = sh[0].feature_dim;
     for (int i = 0; i < n; i++) { nv += sh[i].mesh->nv; nf += sh[i].mesh->nf; }
     neuv_mesh *m = mesh_create(nv, nf, 0);
-    int *fc = malloc(sizeof(int) * (size_t)nf);
-    float *ft = malloc(sizeof(float) * (size_t)nv * (size_t)dim);
-    if (!m || !fc || !ft) { mesh_free(m); free(fc); free(ft); return error_nomem("the joined shapes"); }
+    int *fc = mem_alloc(sizeof(int) * (size_t)nf);
+    float *ft = mem_alloc(sizeof(float) * (size_t)nv * (size_t)dim);
+    if (!m || !fc || !ft) { mesh_free(m); mem_free(fc); mem_free(ft); return error_nomem("the joined shapes"); }
     int vb = 0, fb = 0, cb = 0;
     for (int i = 0; i < n; i++) {
         const neuv_mesh *s = sh[i].mesh;
@@ -101,10 +102,10 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     double t_start = now_seconds(), t = t_start;
     rep->shapes = n;
 
-    category_shape *sh = calloc((size_t)n, sizeof *sh);
-    unwrap_model *md = calloc(1, sizeof *md);
-    const neuv_mesh **ms = malloc(sizeof *ms * (size_t)n);
-    const operators **os = malloc(sizeof *os * (size_t)n);
+    category_shape *sh = mem_calloc((size_t)n, sizeof *sh);
+    unwrap_model *md = mem_calloc(1, sizeof *md);
+    const neuv_mesh **ms = mem_alloc(sizeof *ms * (size_t)n);
+    const operators **os = mem_alloc(sizeof *os * (size_t)n);
     neuv_mesh *joined = NULL;
     int *joined_chart = NULL, joined_charts = 0;
     float *joined_features = NULL;
@@ -130,7 +131,7 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     po.seed = o.seed;
     po.iters = patch_iters > 0 ? patch_iters : category_default_patch_iters(n);
     int k = o.charts > 0 ? o.charts : po.initial_charts;
-    md->patchnet = calloc(1, sizeof *md->patchnet);
+    md->patchnet = mem_calloc(1, sizeof *md->patchnet);
     if (!md->patchnet) { s = error_nomem("the model"); goto done; }
     if ((s = patchnet_model_create_for_mesh(md->patchnet, &po, sh[0].mesh, &sh[0].ops, k)) != NEUV_OK) goto done;
     patchnet_report prep;
@@ -145,7 +146,7 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     t = now_seconds();
     for (int i = 0; i < n && s == NEUV_OK; i++) {
         log_progress("charts", (double)i / n, "shape %d of %d", i + 1, n);
-        sh[i].face_chart = malloc(sizeof(int) * (size_t)sh[i].mesh->nf);
+        sh[i].face_chart = mem_alloc(sizeof(int) * (size_t)sh[i].mesh->nf);
         if (!sh[i].face_chart) { s = error_nomem("charts"); break; }
         s = patchnet_charts_from_model(md->patchnet, sh[i].mesh, &sh[i].ops, &po, sh[i].face_chart, &sh[i].n_charts,
                                        &sh[i].features, &sh[i].feature_dim, NULL);
@@ -158,7 +159,7 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     /* The parameterization networks over every chart of every shape. */
     t = now_seconds();
     if ((s = join_shapes(sh, n, &joined, &joined_chart, &joined_charts, &joined_features)) != NEUV_OK) goto done;
-    corner_uv = malloc(sizeof(double) * 6 * (size_t)joined->nf);
+    corner_uv = mem_alloc(sizeof(double) * 6 * (size_t)joined->nf);
     if (!corner_uv) { s = error_nomem("UVs"); goto done; }
     param_net_options pp;
     param_net_default_options(&pp, o.preset == NEUV_PRESET_PAPER ? PARAM_PRESET_PAPER : PARAM_PRESET_FAST);
@@ -195,13 +196,13 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     rep->seconds = now_seconds() - t_start;
 done:
     for (int i = 0; sh && i < n; i++) category_shape_free(&sh[i]);
-    free(sh);
-    free(ms);
-    free(os);
+    mem_free(sh);
+    mem_free(ms);
+    mem_free(os);
     mesh_free(joined);
-    free(joined_chart);
-    free(joined_features);
-    free(corner_uv);
+    mem_free(joined_chart);
+    mem_free(joined_features);
+    mem_free(corner_uv);
     if (s == NEUV_OK) *out = md;
     else unwrap_model_free(md);
     return s;

@@ -50,6 +50,7 @@ struct neuv_unwrap_result {
     atlas_pack_result pack;
     unwrap_repair *repairs;
     int n_repairs, cap_repairs;
+    int repairs_lost;         /* a note did not fit in memory: the call that made r fails with NEUV_ERR_NOMEM */
     double seconds[STAGE_COUNT];
     double total_seconds;
     uv_metrics metrics;
@@ -108,7 +109,9 @@ void unwrap_provenance_compute(const struct neuv_unwrap_result *r, const unwrap_
 /* "11 network+refined, 3 lscm_after_fold": how many charts each source made. */
 void unwrap_source_summary(const struct neuv_unwrap_result *r, char *buf, size_t n);
 
-/* Appends a repair note (formatted); silently drops it if memory runs out. */
+/* Appends a repair note (formatted). When memory runs out the note is lost
+ * and r->repairs_lost set: the call making r then fails with NEUV_ERR_NOMEM
+ * (unwrap_train, unwrap_with_category, unwrap_apply and unwrap_budgeted look). */
 void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/json_writer.h"
+#include "core/mem.h"
 #include "core/rng.h"
 #include "models/param_output_solve.h"
 #include "nn/checkpoint.h"
@@ -21,15 +22,15 @@ void unwrap_model_free(unwrap_model *model)
 {
     if (!model) return;
     mesh_free(model->source);
-    free(model->face_chart);
-    free(model->face_label);
-    free(model->xf);
-    free(model->chart_net);
-    free(model->chart_mirrored);
+    mem_free(model->face_chart);
+    mem_free(model->face_label);
+    mem_free(model->xf);
+    mem_free(model->chart_net);
+    mem_free(model->chart_mirrored);
     param_net_model_free(model->param);
     if (model->patchnet) patchnet_model_free(model->patchnet);
-    free(model->patchnet);
-    free(model);
+    mem_free(model->patchnet);
+    mem_free(model);
 }
 
 neuv_status unwrap_model_from_result(struct neuv_unwrap_result *r, unwrap_model **out)
@@ -39,7 +40,7 @@ neuv_status unwrap_model_from_result(struct neuv_unwrap_result *r, unwrap_model 
         return error_set(NEUV_ERR_INPUT, "this unwrap kept no model to save");
     if (r->mesh->nv >= MAX_EXACT_INT || r->mesh->nuv >= MAX_EXACT_INT)
         return error_set(NEUV_ERR_INPUT, "the mesh is too large to save as a model (%d vertices)", r->mesh->nv);
-    unwrap_model *m = calloc(1, sizeof *m);
+    unwrap_model *m = mem_calloc(1, sizeof *m);
     if (!m) return error_nomem("the model");
     m->method = r->opts.method;
     m->preset = r->opts.preset;
@@ -50,10 +51,10 @@ neuv_status unwrap_model_from_result(struct neuv_unwrap_result *r, unwrap_model 
     m->n_charts = r->n_charts;
     int nf = r->mesh->nf, nc = r->n_charts;
     m->source = mesh_clone(r->mesh);
-    m->face_chart = malloc(sizeof(int) * (size_t)nf);
-    m->xf = malloc(sizeof *m->xf * (size_t)nc);
-    m->chart_net = malloc(sizeof(int) * (size_t)nc);
-    m->chart_mirrored = malloc(sizeof(int) * (size_t)nc);
+    m->face_chart = mem_alloc(sizeof(int) * (size_t)nf);
+    m->xf = mem_alloc(sizeof *m->xf * (size_t)nc);
+    m->chart_net = mem_alloc(sizeof(int) * (size_t)nc);
+    m->chart_mirrored = mem_alloc(sizeof(int) * (size_t)nc);
     if (!m->source || !m->face_chart || !m->xf || !m->chart_net || !m->chart_mirrored) {
         unwrap_model_free(m);
         return error_nomem("the model");
@@ -93,13 +94,13 @@ static int list_push(tensor_list *l, const char *name, int rows, int cols, float
 {
     if (l->n == l->cap) {
         int cap = l->cap ? 2 * l->cap : 64;
-        nn_tensor *t = realloc(l->t, sizeof *t * (size_t)cap);
+        nn_tensor *t = mem_realloc(l->t, sizeof *t * (size_t)cap);
         if (t) l->t = t;
-        const char **nm = realloc(l->name, sizeof *nm * (size_t)cap);
+        const char **nm = mem_realloc(l->name, sizeof *nm * (size_t)cap);
         if (nm) l->name = nm;
-        float **ow = realloc(l->owned, sizeof *ow * (size_t)cap);
+        float **ow = mem_realloc(l->owned, sizeof *ow * (size_t)cap);
         if (ow) l->owned = ow;
-        if (!t || !nm || !ow) { if (owned) free(data); return -1; }
+        if (!t || !nm || !ow) { if (owned) mem_free(data); return -1; }
         l->cap = cap;
     }
     memset(&l->t[l->n], 0, sizeof l->t[l->n]);
@@ -114,7 +115,7 @@ static int list_push(tensor_list *l, const char *name, int rows, int cols, float
 /* A rows by cols block of doubles as rows by 2*cols float32 slots, bit for bit. */
 static int push_doubles(tensor_list *l, const char *name, int rows, int cols, const double *x)
 {
-    float *buf = malloc(sizeof(double) * (size_t)rows * (size_t)cols);
+    float *buf = mem_alloc(sizeof(double) * (size_t)rows * (size_t)cols);
     if (!buf) return -1;
     memcpy(buf, x, sizeof(double) * (size_t)rows * (size_t)cols);
     return list_push(l, name, rows, 2 * cols, buf, 1);
@@ -123,7 +124,7 @@ static int push_doubles(tensor_list *l, const char *name, int rows, int cols, co
 static int push_ints(tensor_list *l, const char *name, int rows, int cols, const int *x)
 {
     size_t n = (size_t)rows * (size_t)cols;
-    float *buf = malloc(sizeof(float) * n);
+    float *buf = mem_alloc(sizeof(float) * n);
     if (!buf) return -1;
     for (size_t i = 0; i < n; i++) buf[i] = (float)x[i];
     return list_push(l, name, rows, cols, buf, 1);
@@ -208,8 +209,8 @@ static int push_surface(tensor_list *l, const unwrap_model *m)
     bad |= push_ints(l, "source.chart", s->nf, 1, m->face_chart);
     if (m->face_label) bad |= push_ints(l, "source.label", s->nf, 1, m->face_label);
     bad |= push_doubles(l, "source.norm", 1, 5, m->norm);
-    double *xf = malloc(sizeof(double) * 4 * (size_t)nc);
-    int *map = malloc(sizeof(int) * 2 * (size_t)nc);
+    double *xf = mem_alloc(sizeof(double) * 4 * (size_t)nc);
+    int *map = mem_alloc(sizeof(int) * 2 * (size_t)nc);
     if (xf && map) {
         for (int c = 0; c < nc; c++) {
             xf[4 * c] = m->xf[c].scale; xf[4 * c + 1] = m->xf[c].angle;
@@ -220,11 +221,11 @@ static int push_surface(tensor_list *l, const unwrap_model *m)
         bad |= push_doubles(l, "charts.xf", nc, 4, xf);
         bad |= push_ints(l, "charts.map", nc, 2, map);
     } else bad = 1;
-    free(xf);
-    free(map);
+    mem_free(xf);
+    mem_free(map);
     if (m->param) {
         const param_net_model *p = m->param;
-        double *frame = malloc(sizeof(double) * 13 * (size_t)p->n_charts);
+        double *frame = mem_alloc(sizeof(double) * 13 * (size_t)p->n_charts);
         if (frame) {
             for (int c = 0; c < p->n_charts; c++) {
                 memcpy(frame + 13 * c, p->center + 3 * c, 3 * sizeof(double));
@@ -232,7 +233,7 @@ static int push_surface(tensor_list *l, const unwrap_model *m)
                 memcpy(frame + 13 * c + 4, p->rot + 9 * c, 9 * sizeof(double));
             }
             bad |= push_doubles(l, "param.frame", p->n_charts, 13, frame);
-            free(frame);
+            mem_free(frame);
         } else bad = 1;
         bad |= push_ints(l, "param.mirror", p->n_charts, 1, p->mirror);
         if (!bad) bad |= list_push(l, "param.psi", p->n_charts, p->psi_dim, p->psi, 0);
@@ -251,13 +252,13 @@ neuv_status unwrap_model_save(const unwrap_model *m, const char *path)
     if (m->param && !bad) {
         const param_net_model *p = m->param;
         if (p->psi_shift) {
-            double *norm = malloc(sizeof(double) * 2 * (size_t)p->psi_dim);
+            double *norm = mem_alloc(sizeof(double) * 2 * (size_t)p->psi_dim);
             if (!norm) bad = 1;
             else {
                 memcpy(norm, p->psi_shift, sizeof(double) * (size_t)p->psi_dim);
                 memcpy(norm + p->psi_dim, p->psi_mul, sizeof(double) * (size_t)p->psi_dim);
                 bad |= push_doubles(&l, "param.psi_norm", 2, p->psi_dim, norm);
-                free(norm);
+                mem_free(norm);
             }
         }
         if (!bad) bad |= push_params(&l, &p->params);
@@ -267,19 +268,19 @@ neuv_status unwrap_model_save(const unwrap_model *m, const char *path)
     neuv_status st;
     if (bad || !header) st = error_nomem("the model");
     else {
-        nn_tensor **tp = malloc(sizeof *tp * (size_t)l.n);
+        nn_tensor **tp = mem_alloc(sizeof *tp * (size_t)l.n);
         if (!tp) st = error_nomem("the model");
         else {
             for (int i = 0; i < l.n; i++) tp[i] = &l.t[i];
             st = nn_checkpoint_save(path, header, tp, l.name, l.n);
-            free(tp);
+            mem_free(tp);
         }
     }
-    free(header);
-    for (int i = 0; i < l.n_owned; i++) free(l.owned[i]);
-    free(l.owned);
-    free(l.t);
-    free(l.name);
+    mem_free(header);
+    for (int i = 0; i < l.n_owned; i++) mem_free(l.owned[i]);
+    mem_free(l.owned);
+    mem_free(l.t);
+    mem_free(l.name);
     return st;
 }
 
@@ -377,16 +378,16 @@ static neuv_status load_psi_norm(const nn_checkpoint *c, const char *h, int requ
     neuv_status s;
     if (header_value(h, "param_psi_norm") && (s = header_int(h, "param_psi_norm", 0, 1, &has))) return s;
     if (!has) return required ? error_set(NEUV_ERR_INPUT, "category model has no psi standardization") : NEUV_OK;
-    p->psi_shift = malloc(sizeof(double) * (size_t)p->psi_dim);
-    p->psi_mul = malloc(sizeof(double) * (size_t)p->psi_dim);
-    double *norm = malloc(sizeof(double) * 2 * (size_t)p->psi_dim);
-    if (!p->psi_shift || !p->psi_mul || !norm) { free(norm); return error_nomem("the model"); }
+    p->psi_shift = mem_alloc(sizeof(double) * (size_t)p->psi_dim);
+    p->psi_mul = mem_alloc(sizeof(double) * (size_t)p->psi_dim);
+    double *norm = mem_alloc(sizeof(double) * 2 * (size_t)p->psi_dim);
+    if (!p->psi_shift || !p->psi_mul || !norm) { mem_free(norm); return error_nomem("the model"); }
     s = read_doubles(c, "param.psi_norm", 2, p->psi_dim, norm);
     if (s == NEUV_OK) {
         memcpy(p->psi_shift, norm, sizeof(double) * (size_t)p->psi_dim);
         memcpy(p->psi_mul, norm + p->psi_dim, sizeof(double) * (size_t)p->psi_dim);
     }
-    free(norm);
+    mem_free(norm);
     return s;
 }
 
@@ -409,7 +410,7 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     double slope = sv ? strtod(sv, &end) : NAN;
     if (!sv || end == sv || !(slope >= 0 && slope < 1))
         return error_set(NEUV_ERR_INPUT, "model header: \"param_slope\" must be a number in [0, 1)");
-    param_net_model *p = calloc(1, sizeof *p);
+    param_net_model *p = mem_calloc(1, sizeof *p);
     if (!p) return error_nomem("the model");
     m->param = p;
     nn_params_init(&p->params);
@@ -417,14 +418,14 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     p->psi_mode = PARAM_PSI_POOLED;
     p->psi_dim = (int)psi;
     p->n_charts = n;
-    p->psi = malloc(sizeof(float) * (size_t)n * (size_t)psi);
-    p->center = malloc(sizeof(double) * 3 * (size_t)n);
-    p->scale = malloc(sizeof(double) * (size_t)n);
-    p->rot = malloc(sizeof(double) * 9 * (size_t)n);
-    p->mirror = malloc(sizeof(int) * (size_t)n);
-    double *frame = malloc(sizeof(double) * 13 * (size_t)n + 1);
+    p->psi = mem_alloc(sizeof(float) * (size_t)n * (size_t)psi);
+    p->center = mem_alloc(sizeof(double) * 3 * (size_t)n);
+    p->scale = mem_alloc(sizeof(double) * (size_t)n);
+    p->rot = mem_alloc(sizeof(double) * 9 * (size_t)n);
+    p->mirror = mem_alloc(sizeof(int) * (size_t)n);
+    double *frame = mem_alloc(sizeof(double) * 13 * (size_t)n + 1);
     if ((n > 0 && (!p->psi || !p->center || !p->scale || !p->rot || !p->mirror)) || !frame) {
-        free(frame);
+        mem_free(frame);
         return error_nomem("the model");
     }
     rng r;
@@ -434,12 +435,12 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     p->f.fourier = (int)fourier;
     if (!s) s = check_params(c, &p->params);
     if (!s) s = load_psi_norm(c, h, m->category, p);
-    if (n == 0) { free(frame); return s; }
+    if (n == 0) { mem_free(frame); return s; }
     if (!s) s = read_doubles(c, "param.frame", n, 13, frame);
     if (!s) s = read_ints(c, "param.mirror", n, 1, 0, 1, p->mirror);
     const nn_checkpoint_tensor *t;
     if (!s && gain) {
-        p->uv_gain = malloc(sizeof(double) * (size_t)n);
+        p->uv_gain = mem_alloc(sizeof(double) * (size_t)n);
         if (!p->uv_gain) s = error_nomem("the model");
         else s = read_doubles(c, "param.uv_gain", n, 1, p->uv_gain);
         for (int i = 0; !s && i < n; i++)
@@ -449,7 +450,7 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     if (!s && heads) {
         int hs = param_head_size(&p->f);
         s = want_tensor(c, "param.heads", n, hs, &t);
-        if (!s) p->heads = malloc(sizeof(float) * (size_t)n * hs);
+        if (!s) p->heads = mem_alloc(sizeof(float) * (size_t)n * hs);
         if (!s && !p->heads) s = error_nomem("the model");
         if (!s) memcpy(p->heads, t->data, sizeof(float) * (size_t)n * hs);
         for (long i = 0; !s && i < (long)n * hs; i++)
@@ -465,7 +466,7 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
             if (!(p->scale[c2] > 0)) s = error_set(NEUV_ERR_INPUT, "model chart frame %d has a non-positive scale", c2);
         }
     }
-    free(frame);
+    mem_free(frame);
     return s;
 }
 
@@ -488,7 +489,7 @@ static neuv_status load_patchnet(const nn_checkpoint *c, const char *h, unwrap_m
     o.blocks = (int)blocks;
     o.width = (int)width;
     o.seed = (uint64_t)seed;
-    m->patchnet = calloc(1, sizeof *m->patchnet);
+    m->patchnet = mem_calloc(1, sizeof *m->patchnet);
     if (!m->patchnet) return error_nomem("the model");
     if ((s = patchnet_model_create(m->patchnet, &o, (int)in_dim, (int)k))) return s;
     return check_params(c, &m->patchnet->params);
@@ -568,16 +569,16 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
     m->padding = (int)pad;
     m->n_charts = (int)nc;
     m->source = mesh_create((int)nv, (int)nf, (int)nuv);
-    m->face_chart = malloc(sizeof(int) * (size_t)nf);
-    m->xf = malloc(sizeof *m->xf * (size_t)nc);
-    m->chart_net = malloc(sizeof(int) * (size_t)nc);
-    m->chart_mirrored = malloc(sizeof(int) * (size_t)nc);
-    double *xf = malloc(sizeof(double) * 4 * (size_t)nc);
-    int *map = malloc(sizeof(int) * 2 * (size_t)nc);
-    if (has_labels) m->face_label = malloc(sizeof(int) * (size_t)nf);
+    m->face_chart = mem_alloc(sizeof(int) * (size_t)nf);
+    m->xf = mem_alloc(sizeof *m->xf * (size_t)nc);
+    m->chart_net = mem_alloc(sizeof(int) * (size_t)nc);
+    m->chart_mirrored = mem_alloc(sizeof(int) * (size_t)nc);
+    double *xf = mem_alloc(sizeof(double) * 4 * (size_t)nc);
+    int *map = mem_alloc(sizeof(int) * 2 * (size_t)nc);
+    if (has_labels) m->face_label = mem_alloc(sizeof(int) * (size_t)nf);
     if (!m->source || !m->source->tri_uv || !m->face_chart || !m->xf || !m->chart_net || !m->chart_mirrored || !xf ||
         !map || (has_labels && !m->face_label)) {
-        free(xf); free(map);
+        mem_free(xf); mem_free(map);
         return error_nomem("the model");
     }
     neuv_mesh *src = m->source;
@@ -598,8 +599,8 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
         else if (m->chart_mirrored[k] != 0 && m->chart_mirrored[k] != 1)
             s = error_set(NEUV_ERR_INPUT, "model chart %d has a bad mirror flag", k);
     }
-    free(xf);
-    free(map);
+    mem_free(xf);
+    mem_free(map);
     if (s) return s;
     if (has_param && (s = load_param(c, h, m))) return s;
     for (int k = 0; k < m->n_charts; k++)
@@ -620,7 +621,7 @@ neuv_status unwrap_model_load(const char *path, unwrap_model **out)
         nn_checkpoint_free(&c);
         return error_set(NEUV_ERR_INPUT, "checkpoint version %u is not supported", c.version);
     }
-    unwrap_model *m = calloc(1, sizeof *m);
+    unwrap_model *m = mem_calloc(1, sizeof *m);
     if (!m) { nn_checkpoint_free(&c); return error_nomem("the model"); }
     s = load_from(&c, m);
     nn_checkpoint_free(&c);

@@ -4,7 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/error.h"
 #include "core/json_writer.h"
+#include "core/mem.h"
 #include "metrics/uv_metrics.h"
 #include "unwrap/unwrap_internal.h"
 
@@ -35,7 +37,7 @@ static void write_cleaning(json_writer *w, const mesh_clean_report *c)
 unwrap_chart_figures *unwrap_chart_figures_compute(const struct neuv_unwrap_result *r)
 {
     const neuv_mesh *m = r->mesh;
-    unwrap_chart_figures *cf = calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *cf);
+    unwrap_chart_figures *cf = mem_calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *cf);
     if (!cf || !m || !m->tri_uv || !r->face_chart) return cf;
     for (int f = 0; f < m->nf; f++) {
         int c = r->face_chart[f];
@@ -92,7 +94,8 @@ static void json_number_or_null(json_writer *w, double v)
 static void write_provenance(json_writer *w, const struct neuv_unwrap_result *r)
 {
     unwrap_chart_figures *cf = unwrap_chart_figures_compute(r);
-    if (!cf || !r->chart_source) { free(cf); return; }
+    if (!cf) { w->failed = 1; return; } /* out of memory: no report rather than one without provenance */
+    if (!r->chart_source) { mem_free(cf); return; }
     unwrap_provenance pv;
     unwrap_provenance_compute(r, cf, &pv);
     const int *count = pv.count;
@@ -130,7 +133,7 @@ static void write_provenance(json_writer *w, const struct neuv_unwrap_result *r)
         json_end_object(w);
     }
     json_end_array(w);
-    free(cf);
+    mem_free(cf);
 }
 
 void unwrap_source_summary(const struct neuv_unwrap_result *r, char *buf, size_t n)
@@ -277,7 +280,8 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_end_array(&w);
     json_end_object(&w);
 
-    if (w.failed) { json_free(&w); return NULL; }
+    if (w.failed) { json_free(&w); error_nomem("the report"); return NULL; }
     char *text = w.buf; /* hand the buffer over */
-    return text ? text : strdup("{}");
+    if (!text && !(text = mem_strdup("{}"))) error_nomem("the report");
+    return text;
 }
