@@ -260,6 +260,7 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
     double *dist = NULL;
     geodesic_pairs pp = {0};
     neuv_status s = chart_submesh(m, face_chart, c, &sub, &vmap, &fmap);
+    if (s == NEUV_ERR_NOMEM) return s;
     if (s != NEUV_OK) return error_set(NEUV_ERR_INPUT, "chart %d has no face", c);
     double cen[3] = {0, 0, 0}, atot = 0;
     for (int f = 0; f < sub->nf; f++) {

@@ -75,6 +75,7 @@ void nn_ctx_reset(nn_ctx *ctx)
     if (!ctx) return;
     /* A step that needed several blocks gets one block of the total size, so the
      * next identical step runs without touching the heap. */
+    size_t unmerged = 0;
     if (ctx->first && ctx->first->next) {
         size_t total = 0;
         for (arena_block *b = ctx->first; b; b = b->next) total += b->cap;
@@ -83,6 +84,8 @@ void nn_ctx_reset(nn_ctx *ctx)
             blocks_free(ctx->first);
             ctx->first = merged;
             ctx->grow_count++;
+        } else {
+            unmerged = total;
         }
     }
     for (arena_block *b = ctx->first; b; b = b->next) b->used = 0;
@@ -90,6 +93,10 @@ void nn_ctx_reset(nn_ctx *ctx)
     ctx->tail = NULL;
     ctx->status = NEUV_OK;
     ctx->message[0] = '\0';
+    /* The old blocks would still do, but the allocator is out of memory:
+     * the step that follows fails (nn_ctx_alloc refuses) rather than go on. */
+    if (unmerged)
+        nn_ctx_fail(ctx, NEUV_ERR_NOMEM, "out of memory merging the neural network arena into %zu bytes", unmerged);
 }
 
 neuv_status nn_ctx_status(const nn_ctx *ctx)
@@ -132,7 +139,7 @@ nn_tensor *nn_ctx_fail(nn_ctx *ctx, neuv_status code, const char *fmt, ...)
 
 void *nn_ctx_alloc(nn_ctx *ctx, size_t bytes)
 {
-    if (!ctx) return NULL;
+    if (!ctx || ctx->status != NEUV_OK) return NULL; /* a failed step stays failed */
     size_t need = (bytes + NN_ALIGN - 1) / NN_ALIGN * NN_ALIGN;
     if (need == 0) need = NN_ALIGN;
     arena_block *b = ctx->cur;
