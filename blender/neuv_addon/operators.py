@@ -34,7 +34,7 @@ class Progress:
         self.workspace = context.workspace
         self.title = title
         self.value = 0.0
-        self.stage = None
+        self.seen = set()
         self.warnings = []
         self.handler = logging.Handler(logging.WARNING)
         self.handler.emit = lambda record: self.warnings.append(record.getMessage())
@@ -48,8 +48,8 @@ class Progress:
         if stage in STAGES:
             self.value = max(self.value, (STAGES.index(stage) + min(max(fraction, 0.0), 1.0)) / len(STAGES))
         self.wm.progress_update(int(1000 * self.value))
-        if stage != self.stage:
-            self.stage = stage
+        if stage not in self.seen:  # the console: each stage once
+            self.seen.add(stage)
             print(f"{self.title}: {stage}")
         if self.workspace is not None:
             self.workspace.status_text_set(f"{self.title}: {stage}" + (f", {detail}" if detail else ""))
