@@ -163,11 +163,15 @@ def record_metrics(neuv, m, layer):
     return metrics
 
 
+def count(n, word):
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
 def summary(metrics, seconds):
     charts = sum(x["charts"] for x in metrics)
     flipped = sum(x["blender_flipped"] for x in metrics)
     qce = ", ".join(f"{x['qce_mean']:.4f}" for x in metrics)
-    return f"neuv: {charts} charts, qce_mean {qce}, {flipped} flipped, {seconds:.1f} s"
+    return f"neuv: {count(charts, 'chart')}, qce_mean {qce}, {flipped} flipped, {seconds:.1f} s"
 
 
 class AtlasWriter:
@@ -191,14 +195,14 @@ class AtlasWriter:
             m.write_uvs(layer, np.nan_to_num(uv, nan=0.0))
         dropped = sum(r["dropped_polygons"] for r in results)
         if dropped:
-            self.report({'WARNING'}, f"neuv: {dropped} faces were dropped by neuv's cleaning (degenerate or "
-                                     "welded to nothing); their UVs are left at 0")
+            self.report({'WARNING'}, f"neuv: {count(dropped, 'face')} dropped by neuv's cleaning (degenerate "
+                                     "or welded to nothing), UVs left at 0")
         if moved:
-            self.report({'INFO'}, f"neuv: {moved} faces crossed a seam; each was moved onto one chart, "
-                                  "then the atlas was packed again")
+            self.report({'INFO'}, f"neuv: {count(moved, 'face')} crossed a seam: each moved onto one chart, "
+                                  "then the atlas packed again")
         if mirrored:
-            self.report({'INFO'}, f"neuv: {mirrored} charts came out mirrored against Blender's face "
-                                  "winding and were mirrored back, then the atlas was packed again")
+            self.report({'INFO'}, f"neuv: {count(mirrored, 'chart')} wound against Blender's faces mirrored "
+                                  "back, then the atlas packed again")
         for w in run.warnings[:5]:
             self.report({'WARNING'}, f"neuv: {w}")
         return [record_metrics(neuv, m, layer) for m, layer in zip(meshes, layers)]
