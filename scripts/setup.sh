@@ -16,6 +16,9 @@ PACKAGES=(
   python3-pytest                     # the Python package's tests
   python3-venv python3-setuptools python3-wheel  # make python: a venv, built and installed without network
 )
+# Blender 3.4 for the add-on's headless test (tests/cli_blender.sh), which
+# `make test` runs; it is large, so NEUV_NO_BLENDER=1 leaves it out (the test then skips).
+if [ -z "${NEUV_NO_BLENDER:-}" ]; then PACKAGES+=(blender); fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
