@@ -1,0 +1,320 @@
+/* Out of memory, honestly. An application allocator (neuv_set_allocator)
+ * counts live blocks and fails the Nth allocation (alloc or realloc call).
+ * A small unwrap through the public API (an atlas) runs once to count its allocations
+ * A; then it runs again with the Nth failing, for many N, and every time it
+ * must return NEUV_ERR_NOMEM, leave its out-pointer NULL, and free all it
+ * allocated (the live count is back where it was). Only the Nth fails, not
+ * every one after it, so a failure the library swallows (a note dropped, a
+ * fallback taken) shows up as NEUV_OK. neuv_mesh_save under every failure
+ * leaves neither the file nor its temporary, and neuv_atlas_report_json
+ * returns NULL.
+ *
+ * Which N: every one up to a cap, then, above it, `per_stage` evenly spaced
+ * over each stage of the pipeline (the stages the progress callback names,
+ * located in the counting run; "param", named once per chart, is one
+ * stage). The packer makes most of the allocations (footprints for every
+ * trial) and takes little time; the networks make few and take most of it
+ * (a neural run that gets past them costs ~3 s of CPU under ASan). A stride
+ * per stage tries each stage as often, whatever its count.
+ *
+ * Figures: 80-face icosphere, threads 1 (the order of allocations is then
+ * fixed), the test prints its own. LSCM: 24,170 allocations, every N up to
+ * 300, then 8 per stage (5 stages): 340 runs. Neural (3 steps per network,
+ * refine 2): 28,415 allocations, every N up to 60 (its first ~2,000 are
+ * LSCM's: cleaning, operators, PatchNet, charts), then 3 per stage (8
+ * stages): 84 runs. About 45 s of CPU under ASan/UBSan (2.5 min of wall time
+ * on two cores shared with other builds). Every N of both was tried once, in
+ * a Release build, forking per N. Set NEUV_ALLOC_FAILURE_EVERY (a large
+ * value tries every N), NEUV_ALLOC_FAILURE_PER_STAGE, or
+ * NEUV_ALLOC_FAILURE_N (that one N only, to debug a failure). */
+#include <dirent.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "mesh/shapes.h"
+#include "neuv/neuv.h"
+
+static atomic_long n_calls; /* alloc and realloc calls since arm() */
+static atomic_long n_live;  /* blocks allocated and not yet freed */
+static atomic_long fail_at; /* the call that fails; 0: none */
+
+static void *count_alloc(void *user, size_t size)
+{
+    (void)user;
+    if (atomic_fetch_add(&n_calls, 1) + 1 == atomic_load(&fail_at)) return NULL;
+    void *p = malloc(size);
+    if (p) atomic_fetch_add(&n_live, 1);
+    return p;
+}
+
+static void *count_realloc(void *user, void *ptr, size_t size)
+{
+    (void)user;
+    if (atomic_fetch_add(&n_calls, 1) + 1 == atomic_load(&fail_at)) return NULL;
+    return realloc(ptr, size);
+}
+
+static void count_free(void *user, void *ptr)
+{
+    (void)user;
+    atomic_fetch_sub(&n_live, 1);
+    free(ptr);
+}
+
+static void arm(long n)
+{
+    atomic_store(&n_calls, 0);
+    atomic_store(&fail_at, n);
+}
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static long env_long(const char *name, long fallback)
+{
+    const char *v = getenv(name);
+    return v && *v ? atol(v) : fallback;
+}
+
+/* Stages as the progress callback names them: where each begins, counted
+ * in allocations. */
+#define MAX_STAGES 64
+static struct { char name[32]; long start; } stage[MAX_STAGES];
+static int n_stages;
+
+static int on_progress(void *user, const char *name, double fraction, const char *detail)
+{
+    (void)user; (void)fraction; (void)detail;
+    if (n_stages > 0 && !strcmp(stage[n_stages - 1].name, name)) return 1;
+    if (n_stages == MAX_STAGES) return 1;
+    snprintf(stage[n_stages].name, sizeof stage[n_stages].name, "%s", name);
+    stage[n_stages].start = atomic_load(&n_calls) + 1;
+    n_stages++;
+    return 1;
+}
+
+/* An unwrap as an application makes it: an atlas, the mesh added (copied),
+ * all stages. On failure *out is NULL and nothing is kept. */
+static neuv_status unwrap_once(const neuv_mesh *mesh, const neuv_unwrap_options *o, const neuv_callbacks *cb,
+                               neuv_atlas **out)
+{
+    *out = NULL;
+    neuv_atlas *a = NULL;
+    neuv_status s = neuv_atlas_create(&a);
+    if (s == NEUV_OK) {
+        neuv_atlas_set_callbacks(a, cb);
+        s = neuv_atlas_add_loaded_mesh(a, mesh);
+    }
+    if (s == NEUV_OK) s = neuv_atlas_generate(a, o);
+    if (s != NEUV_OK) { neuv_atlas_destroy(a); return s; }
+    *out = a;
+    return NEUV_OK;
+}
+
+static int cmp_long(const void *a, const void *b)
+{
+    long x = *(const long *)a, y = *(const long *)b;
+    return (x > y) - (x < y);
+}
+
+/* Allocations lo..hi of stage s, clipped to those above `every`
+ * (hi < lo: none). Stage -1 is what comes before the first report. */
+static void stage_range(int s, long a, long every, long *lo, long *hi)
+{
+    *lo = s < 0 ? 1 : stage[s].start;
+    *hi = s + 1 < n_stages ? stage[s + 1].start - 1 : a;
+    if (*lo <= every) *lo = every + 1;
+}
+
+/* The N to try for a call of `a` allocations: 1..every, then per_stage
+ * evenly spaced over each stage (a stage the callback names more than once,
+ * as "param" once per chart, counts as one). Returns how many, ascending. */
+static long choose_n(long a, long every, long per_stage, long **out)
+{
+    long cap = (every < a ? every : a) + (long)(MAX_STAGES + 1) * per_stage + 1, n = 0;
+    long *list = malloc(sizeof *list * (size_t)cap);
+    if (!list) return 0;
+    for (long k = 1; k <= a && k <= every; k++) list[n++] = k;
+    for (int s = -1; s < n_stages; s++) {
+        int first = 1; /* s is the first mention of its name */
+        for (int t = 0; t < s; t++)
+            if (!strcmp(stage[t].name, stage[s].name)) first = 0;
+        if (s >= 0 && !first) continue;
+        long len = 0, lo, hi;
+        for (int t = s; t < n_stages; t++) {
+            if (t != s && (s < 0 || strcmp(stage[t].name, stage[s].name))) continue;
+            stage_range(t, a, every, &lo, &hi);
+            if (hi >= lo) len += hi - lo + 1;
+            if (s < 0) break;
+        }
+        for (long j = 0; j < per_stage && len > 0; j++) {
+            long pos = len * (2 * j + 1) / (2 * per_stage); /* 0-based within the stage */
+            for (int t = s; t < n_stages; t++) {
+                if (t != s && (s < 0 || strcmp(stage[t].name, stage[s].name))) continue;
+                stage_range(t, a, every, &lo, &hi);
+                if (hi >= lo && pos <= hi - lo) { list[n++] = lo + pos; break; }
+                if (hi >= lo) pos -= hi - lo + 1;
+                if (s < 0) break;
+            }
+        }
+    }
+    qsort(list, (size_t)n, sizeof *list, cmp_long);
+    long m = 0;
+    for (long i = 0; i < n; i++)
+        if (m == 0 || list[i] != list[m - 1]) list[m++] = list[i];
+    *out = list;
+    return m;
+}
+
+static int runs_total;
+
+static void unwrap_under_failure(const neuv_mesh *mesh, const neuv_unwrap_options *o, const char *label, long every,
+                                 long per_stage)
+{
+    long live0 = atomic_load(&n_live);
+    n_stages = 0;
+    arm(0);
+    const neuv_callbacks stages = {NULL, on_progress, NULL};
+    neuv_atlas *r = NULL;
+    neuv_status s = unwrap_once(mesh, o, &stages, &r);
+    long a = atomic_load(&n_calls);
+    CHECK_INT(s, NEUV_OK);
+    neuv_atlas_destroy(r);
+    CHECK_INT(atomic_load(&n_live), live0);
+
+    long *list = NULL, count = choose_n(a, every, per_stage, &list);
+    long only = env_long("NEUV_ALLOC_FAILURE_N", 0);
+    if (only > 0) { list[0] = only; count = 1; }
+    int bad = 0;
+    double t0 = now();
+    for (long i = 0; i < count; i++) {
+        long n = list[i];
+        arm(n);
+        r = (neuv_atlas *)&r; /* not NULL: the call must clear it */
+        s = unwrap_once(mesh, o, NULL, &r); /* the callbacks allocate nothing: same N as the counting run */
+        arm(0);
+        long leaked = atomic_load(&n_live) - live0;
+        int ok = s == NEUV_ERR_NOMEM && r == NULL && leaked == 0;
+        if (!ok && bad++ < 20)
+            fprintf(stderr, "%s: allocation %ld of %ld failing: status %d (%s), result %s, %ld blocks leaked\n", label,
+                    n, a, s, neuv_last_error(), r ? "set" : "NULL", leaked);
+        CHECK(ok);
+        if (s == NEUV_OK) neuv_atlas_destroy(r);
+        atomic_store(&n_live, live0); /* a leak is reported once */
+    }
+    printf("%s: %ld allocations; failed each of 1..%ld, then %ld per stage: %ld runs, %.1f s. Stages from:", label,
+           a, every < a ? every : a, per_stage, count, now() - t0);
+    for (int k = 0; k < n_stages; k++) printf(" %s %ld", stage[k].name, stage[k].start);
+    printf("\n");
+    runs_total += (int)count;
+    free(list);
+}
+
+/* Whether `dir` holds `name` or a temporary of it (name.tmp-XXXXXX). */
+static int leftover(const char *dir, const char *name)
+{
+    DIR *d = opendir(dir);
+    if (!d) return 0;
+    size_t n = strlen(name);
+    int found = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        if (!strncmp(e->d_name, name, n) && (e->d_name[n] == '\0' || e->d_name[n] == '.')) found = 1;
+    closedir(d);
+    return found;
+}
+
+static void save_under_failure(const neuv_mesh *mesh, const char *name)
+{
+    const char *path = tmp_path(name);
+    const char *dir = tmp_path("");
+    unlink(path);
+    long live0 = atomic_load(&n_live);
+    arm(0);
+    CHECK_INT(neuv_mesh_save(mesh, path), NEUV_OK);
+    long a = atomic_load(&n_calls);
+    CHECK_INT(atomic_load(&n_live), live0);
+    CHECK(access(path, F_OK) == 0);
+    unlink(path);
+    for (long n = 1; n <= a; n++) {
+        arm(n);
+        neuv_status s = neuv_mesh_save(mesh, path);
+        arm(0);
+        CHECK_INT(s, NEUV_ERR_NOMEM);
+        CHECK_INT(atomic_load(&n_live), live0);
+        CHECK(!leftover(dir, name));
+        atomic_store(&n_live, live0);
+        unlink(path);
+    }
+    printf("save %s: %ld allocations, each failed in turn\n", name, a);
+}
+
+static void report_under_failure(const neuv_atlas *r)
+{
+    long live0 = atomic_load(&n_live);
+    arm(0);
+    char *json = neuv_atlas_report_json(r, "sphere", 0, 0);
+    long a = atomic_load(&n_calls);
+    CHECK(json != NULL);
+    neuv_free(json);
+    CHECK_INT(atomic_load(&n_live), live0);
+    for (long n = 1; n <= a; n++) {
+        arm(n);
+        json = neuv_atlas_report_json(r, "sphere", 0, 0);
+        arm(0);
+        CHECK(json == NULL);
+        neuv_free(json);
+        CHECK_INT(atomic_load(&n_live), live0);
+        atomic_store(&n_live, live0);
+    }
+    printf("report: %ld allocations, each failed in turn\n", a);
+}
+
+int main(void)
+{
+    const neuv_allocator counting = {count_alloc, count_realloc, count_free, NULL};
+    neuv_set_allocator(&counting); /* before any other call, as the contract asks */
+
+    neuv_mesh *mesh = shape_icosphere(1, 1.0);
+    CHECK(mesh != NULL);
+    if (!mesh) return check_report("alloc_failure");
+
+    long every = env_long("NEUV_ALLOC_FAILURE_EVERY", 0), per_stage = env_long("NEUV_ALLOC_FAILURE_PER_STAGE", 0);
+    neuv_unwrap_options o;
+    neuv_unwrap_options_init(&o);
+    o.use_cache = 0;
+    o.threads = 1;
+    o.resolution = 64;
+    o.iters = 3;
+    o.method = NEUV_METHOD_LSCM;
+    unwrap_under_failure(mesh, &o, "lscm", every ? every : 300, per_stage ? per_stage : 8);
+
+    /* The networks: PatchNet and the parameterization networks, 3 steps each. */
+    o.method = NEUV_METHOD_NEURAL;
+    o.refine = 2;
+    unwrap_under_failure(mesh, &o, "neural", every ? every : 60, per_stage ? per_stage : 3);
+
+    arm(0);
+    neuv_atlas *r = NULL;
+    CHECK_INT(unwrap_once(mesh, &o, NULL, &r), NEUV_OK);
+    if (r) {
+        report_under_failure(r);
+        save_under_failure(neuv_atlas_mesh(r), "alloc_failure.obj");
+        save_under_failure(neuv_atlas_mesh(r), "alloc_failure.ply");
+        save_under_failure(neuv_atlas_mesh(r), "alloc_failure.glb");
+    }
+    neuv_atlas_destroy(r);
+    neuv_mesh_free(mesh);
+    CHECK_INT(atomic_load(&n_live), 0);
+    neuv_set_allocator(NULL);
+    printf("%d unwraps under failure\n", runs_total);
+    return check_report("alloc_failure");
+}
