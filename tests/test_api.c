@@ -283,7 +283,7 @@ static void count_log(void *user, neuv_log_level level, const char *message)
 static void test_callbacks_and_cancel(void)
 {
     static grid g;
-    make_cylinder(&g, 24, 8, 0.5f, 0);
+    make_cylinder(&g, 16, 5, 0.5f, 0);
     neuv_mesh_decl d;
     decl_of(&g, &d);
     neuv_unwrap_options uo = quick_options(NEUV_METHOD_NEURAL);
@@ -348,8 +348,8 @@ static void *run_job(void *arg)
 static void test_two_threads(void)
 {
     static grid g1, g2;
-    make_cylinder(&g1, 24, 8, 0.5f, 0);
-    make_cylinder(&g2, 20, 10, 0.4f, 0);
+    make_cylinder(&g1, 16, 5, 0.5f, 0);
+    make_cylinder(&g2, 14, 6, 0.4f, 0);
     neuv_mesh_decl d1, d2;
     decl_of(&g1, &d1);
     decl_of(&g2, &d2);
@@ -374,7 +374,7 @@ static void test_two_threads(void)
 static void test_models(void)
 {
     static grid g;
-    make_cylinder(&g, 24, 8, 0.5f, 0);
+    make_cylinder(&g, 16, 5, 0.5f, 0);
     neuv_mesh_decl d;
     decl_of(&g, &d);
     neuv_unwrap_options uo = quick_options(NEUV_METHOD_NEURAL);
@@ -418,6 +418,7 @@ static void test_pack_existing(void)
 {
     neuv_mesh *m = NULL;
     CHECK(neuv_shape("capsule", -1, &m) == NEUV_OK);
+    neuv_mesh_free(m);
     CHECK(neuv_shape("capsule", 3, &m) == NEUV_ERR_INPUT);
     CHECK(neuv_shape("teapot", -1, &m) == NEUV_ERR_INPUT);
     neuv_atlas *a = NULL;
