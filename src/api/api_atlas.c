@@ -164,11 +164,15 @@ neuv_status neuv_atlas_add_mesh(neuv_atlas *a, const neuv_mesh_decl *d)
 int neuv_atlas_mesh_count(const neuv_atlas *a) { return a ? a->n_meshes : 0; }
 int neuv_atlas_stage(const neuv_atlas *a) { return a ? a->stage : 0; }
 
+/* The result of the last stage run (NULL before stage 1). */
+static const struct neuv_unwrap_result *latest(const neuv_atlas *a)
+{
+    return a->stage == 3 ? a->result : a->stage == 2 ? a->after_param : a->stage == 1 ? a->after_charts : NULL;
+}
+
 int neuv_atlas_chart_count(const neuv_atlas *a)
 {
-    if (!a) return 0;
-    const struct neuv_unwrap_result *r = a->stage == 3 ? a->result : a->stage == 2 ? a->after_param
-                                       : a->stage == 1 ? a->after_charts : NULL;
+    const struct neuv_unwrap_result *r = a ? latest(a) : NULL;
     return r ? r->n_charts : 0;
 }
 
@@ -464,15 +468,10 @@ const char *neuv_chart_source_name(neuv_chart_source s)
     return s >= 0 && s < NEUV_SOURCE_COUNT ? chart_source_name((chart_source)s) : "unknown";
 }
 
-static const struct neuv_unwrap_result *latest(const neuv_atlas *a)
-{
-    return a->stage == 3 ? a->result : a->stage == 2 ? a->after_param : NULL;
-}
-
 neuv_status neuv_atlas_get_chart(const neuv_atlas *a, int chart, neuv_chart_info *out)
 {
     if (!a || !out) return error_set(NEUV_ERR_INPUT, "neuv_atlas_get_chart: no atlas or no output");
-    const struct neuv_unwrap_result *r = latest(a);
+    const struct neuv_unwrap_result *r = a->stage >= 2 ? latest(a) : NULL;
     if (!r || !r->chart_source) return error_set(NEUV_ERR_INPUT, "the atlas has no parameterized charts yet");
     if (chart < 0 || chart >= r->n_charts)
         return error_set(NEUV_ERR_INPUT, "chart %d: the atlas has %d charts", chart, r->n_charts);
@@ -492,8 +491,7 @@ neuv_status neuv_atlas_get_report(const neuv_atlas *a, neuv_report *out)
     if (!a || !out) return error_set(NEUV_ERR_INPUT, "neuv_atlas_get_report: no atlas or no output");
     memset(out, 0, sizeof *out);
     out->network_qce_mean = NAN;
-    const struct neuv_unwrap_result *r = a->stage == 3 ? a->result : a->stage == 2 ? a->after_param
-                                       : a->stage == 1 ? a->after_charts : NULL;
+    const struct neuv_unwrap_result *r = latest(a);
     if (!r) return error_set(NEUV_ERR_INPUT, "no stage has run on the atlas");
     out->input_vertices = r->input_vertices;
     out->input_faces = r->input_faces;
