@@ -196,7 +196,8 @@ neuv_status neuv_atlas_compute_charts(neuv_atlas *a, const neuv_chart_options *o
     log_scope_open(&scope, &a->callbacks);
     struct neuv_unwrap_result *r = NULL;
     s = unwrap_result_new(&u, &r);
-    if (s == NEUV_OK) s = unwrap_stage_charts(r, a->input, 0, NULL, &a->features, &a->feature_dim);
+    unwrap_plan plan = {NULL, 0, 0, NULL};
+    if (s == NEUV_OK) s = unwrap_stage_charts(r, a->input, &plan, &a->features, &a->feature_dim);
     log_scope_close(&scope);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     a->opts = u;
@@ -222,7 +223,8 @@ neuv_status neuv_atlas_parameterize(neuv_atlas *a, const neuv_param_options *o)
     if (s == NEUV_OK) {
         r->opts = u;
         if (u.threads > 0) nn_set_threads(u.threads);
-        s = unwrap_stage_param(r, 0, NULL, 0, a->features, a->feature_dim);
+        unwrap_plan plan = {NULL, 0, 0, NULL};
+        s = unwrap_stage_param(r, &plan, a->features, a->feature_dim);
     }
     log_scope_close(&scope);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
@@ -251,7 +253,8 @@ neuv_status neuv_atlas_pack(neuv_atlas *a, const neuv_pack_options *o)
     s = unwrap_result_clone(a->after_param, &r);
     if (s == NEUV_OK) {
         r->opts = u;
-        s = unwrap_stage_pack(r);
+        unwrap_plan plan = {NULL, 0, 0, NULL};
+        s = unwrap_stage_pack(r, &plan);
     }
     log_scope_close(&scope);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
@@ -267,11 +270,12 @@ static neuv_status generate_staged(neuv_atlas *a, const neuv_unwrap_options *o)
 {
     struct neuv_unwrap_result *r = NULL;
     neuv_status s = unwrap_result_new(o, &r);
-    if (s == NEUV_OK) s = unwrap_stage_charts(r, a->input, o->keep_model, NULL, &a->features, &a->feature_dim);
+    unwrap_plan plan = {NULL, o->keep_model, 0, NULL};
+    if (s == NEUV_OK) s = unwrap_stage_charts(r, a->input, &plan, &a->features, &a->feature_dim);
     if (s == NEUV_OK) s = unwrap_result_clone(r, &a->after_charts);
-    if (s == NEUV_OK) s = unwrap_stage_param(r, o->keep_model, NULL, 0, a->features, a->feature_dim);
+    if (s == NEUV_OK) s = unwrap_stage_param(r, &plan, a->features, a->feature_dim);
     if (s == NEUV_OK) s = unwrap_result_clone(r, &a->after_param);
-    if (s == NEUV_OK) s = unwrap_stage_pack(r);
+    if (s == NEUV_OK) s = unwrap_stage_pack(r, &plan);
     if (s == NEUV_OK && o->keep_model) s = unwrap_model_from_result(r, &a->model);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     a->result = r;

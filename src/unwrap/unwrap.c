@@ -1,5 +1,8 @@
-/* `neuv unwrap`: clean → operators → PatchNet charts → parameterization →
- * repair → pack → metrics. Each stage is timed; every repair is recorded. */
+/* The pipeline: clean → charts → parameterization and repair → pack →
+ * metrics, one sequence of stages for every path (trained on the mesh, a
+ * category model's inference, a surface model carried to another
+ * triangulation: unwrap_plan). Each stage is timed by one clock; every
+ * repair is recorded. */
 #include "unwrap/unwrap_internal.h"
 
 #include <math.h>
@@ -24,6 +27,7 @@
 #include "models/patchnet.h"
 #include "nn/nn.h"
 #include "segment/patchnet_segment.h"
+#include "unwrap/unwrap_apply.h"
 #include "unwrap/unwrap_model.h"
 
 void neuv_unwrap_options_init(neuv_unwrap_options *o)
@@ -399,33 +403,48 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
     return NEUV_OK;
 }
 
-static double stage_total(const struct neuv_unwrap_result *r)
+void unwrap_stage_time(struct neuv_unwrap_result *r, int stage, double t0)
 {
+    r->seconds[stage] += now_seconds() - t0;
     double t = 0;
     for (int i = 0; i < STAGE_COUNT; i++) t += r->seconds[i];
-    return t;
+    r->total_seconds = t;
 }
 
-neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model,
-                                const unwrap_model *category, float **features_out, int *feature_dim_out)
+neuv_status unwrap_clean_copy(const neuv_mesh *in, neuv_mesh **out, mesh_clean_report *report)
 {
-    const neuv_unwrap_options *o = &r->opts;
-    double t = now_seconds();
-    neuv_status s;
-    *features_out = NULL;
-    *feature_dim_out = 0;
-
+    *out = NULL;
     neuv_mesh *m = mesh_clone(in);
     if (!m) return error_nomem("the mesh");
-    r->mesh = m;
-    r->input_vertices = in->nv;
-    r->input_faces = in->nf;
     mesh_set_uv(m, 0, NULL, NULL);
-    if ((s = mesh_clean(m, NULL, &r->clean)) != NEUV_OK) return s;
-    if (m->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
-    if (!(mesh_total_area(m) > 0)) return error_set(NEUV_ERR_INPUT, "the mesh has zero area");
-    r->seconds[STAGE_CLEAN] = now_seconds() - t;
-    if (log_cancelled()) return error_cancelled();
+    neuv_status s = mesh_clean(m, NULL, report);
+    if (s == NEUV_OK && m->nf == 0)
+        s = error_set(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
+    if (s == NEUV_OK && !(mesh_total_area(m) > 0)) s = error_set(NEUV_ERR_INPUT, "the mesh has zero area");
+    if (s != NEUV_OK) { mesh_free(m); return s; }
+    *out = m;
+    return NEUV_OK;
+}
+
+/* The end of every stage: a cancel asked for during it, or a repair note
+ * that did not fit in memory, stops the run. */
+static neuv_status stage_end(const struct neuv_unwrap_result *r, neuv_status s)
+{
+    if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
+    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
+    return s;
+}
+
+/* PatchNet's charts of r->mesh: trained on it, or (category) by the model's inference. */
+static neuv_status charts_by_patchnet(struct neuv_unwrap_result *r, const unwrap_plan *plan, float **features_out,
+                                      int *feature_dim_out)
+{
+    const neuv_unwrap_options *o = &r->opts;
+    neuv_mesh *m = r->mesh;
+    const unwrap_model *category = plan->model;
+    int keep_model = plan->keep_model;
+    neuv_status s;
+    double t;
 
     t = now_seconds();
     log_progress("operators", 0, NULL);
@@ -433,7 +452,7 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
     memset(&ops, 0, sizeof ops);
     operators_params op = operators_default_params();
     s = operators_get(m, &op, o->use_cache, &ops, NULL, &r->cache_hit);
-    r->seconds[STAGE_OPERATORS] = now_seconds() - t;
+    unwrap_stage_time(r, STAGE_OPERATORS, t);
     if (s != NEUV_OK) return s;
     if (log_cancelled()) { operators_free(&ops); return error_cancelled(); }
 
@@ -470,22 +489,45 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
         if (s == NEUV_OK && keep_model) s = patchnet_infer(r->patchnet, m, &ops, r->face_label);
     }
     operators_free(&ops);
-    r->seconds[STAGE_PATCHES] = now_seconds() - t;
+    unwrap_stage_time(r, STAGE_PATCHES, t);
     r->patches = prep.k;
     r->patch_iterations = prep.iterations;
     r->patch_iters_per_second = prep.iters_per_second;
-    r->total_seconds = stage_total(r);
-    if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
     if (s != NEUV_OK) { mem_free(features); return s; }
     *features_out = features;
     *feature_dim_out = feature_dim;
     return NEUV_OK;
 }
 
-neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, int keep_model, const unwrap_model *category,
-                               int finetune, const float *features, int feature_dim)
+neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *in, const unwrap_plan *plan,
+                                float **features_out, int *feature_dim_out)
+{
+    *features_out = NULL;
+    *feature_dim_out = 0;
+    double t = now_seconds();
+    r->input_vertices = in->nv;
+    r->input_faces = in->nf;
+    neuv_status s = unwrap_clean_copy(in, &r->mesh, &r->clean);
+    unwrap_stage_time(r, STAGE_CLEAN, t);
+    if ((s = stage_end(r, s)) != NEUV_OK) return s;
+    if (plan->apply) s = unwrap_apply_charts(r, plan->model, plan->apply);
+    else s = charts_by_patchnet(r, plan, features_out, feature_dim_out);
+    if ((s = stage_end(r, s)) != NEUV_OK) {
+        mem_free(*features_out);
+        *features_out = NULL;
+        *feature_dim_out = 0;
+    }
+    return s;
+}
+
+/* The networks' map (trained, inferred or fine-tuned) or the classic
+ * method, then the repair loop with its refinement. */
+static neuv_status param_by_networks(struct neuv_unwrap_result *r, const unwrap_plan *plan, const float *features,
+                                     int feature_dim)
 {
     const neuv_unwrap_options *o = &r->opts;
+    const unwrap_model *category = plan->model;
+    int keep_model = plan->keep_model, finetune = plan->finetune;
     neuv_mesh *m = r->mesh;
     neuv_status s = NEUV_OK;
     double *corner_uv = NULL;
@@ -517,7 +559,7 @@ neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, int keep_model, con
         r->param_loss = pr.loss;
         r->param = pr.model;
     }
-    r->seconds[STAGE_PARAM] = now_seconds() - t;
+    unwrap_stage_time(r, STAGE_PARAM, t);
     if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
     if (s != NEUV_OK) { mem_free(corner_uv); return s; }
 
@@ -540,15 +582,22 @@ neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, int keep_model, con
     for (int c = 0; c < cap; c++) unwrap_piece_clear(&pieces[c]);
     mem_free(pieces);
     /* The refinement ran chart by chart in the repair loop; it belongs to the parameterization. */
-    r->seconds[STAGE_REPAIR] = now_seconds() - t - r->refine_seconds;
+    unwrap_stage_time(r, STAGE_REPAIR, t);
+    r->seconds[STAGE_REPAIR] -= r->refine_seconds;
     r->seconds[STAGE_PARAM] += r->refine_seconds;
-    r->total_seconds = stage_total(r);
-    if (s == NEUV_OK && log_cancelled()) s = error_cancelled();
-    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     return s;
 }
 
-neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r)
+neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, const unwrap_plan *plan, const float *features,
+                               int feature_dim)
+{
+    neuv_status s = plan->apply ? unwrap_apply_param(r, plan->model, plan->apply)
+                                : param_by_networks(r, plan, features, feature_dim);
+    return stage_end(r, s);
+}
+
+/* Charts split where they pack badly, then packed afresh. */
+static neuv_status pack_afresh(struct neuv_unwrap_result *r)
 {
     const neuv_unwrap_options *o = &r->opts;
     neuv_mesh *m = r->mesh;
@@ -564,30 +613,34 @@ neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r)
     pk.resolution = o->resolution;
     pk.padding = o->padding;
     s = atlas_pack(m, r->face_chart, r->n_charts, &pk, r->transforms, &r->pack);
-    r->seconds[STAGE_PACK] = now_seconds() - t;
-    if (s != NEUV_OK) return s;
-
-    /* The metrics of the mesh as `neuv eval` will read it back (positions welded). */
-    t = now_seconds();
-    s = unwrap_metrics(m, &r->metrics);
-    r->seconds[STAGE_METRICS] = now_seconds() - t;
-    r->total_seconds = stage_total(r);
-    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
+    unwrap_stage_time(r, STAGE_PACK, t);
     return s;
 }
 
-/* category: a category model (unwrap_category.h) whose PatchNet and
- * parameterization networks replace training (finetune > 0: the networks
- * train that many steps from the model's weights); NULL: train on this mesh. */
-static neuv_status run_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model,
-                                const unwrap_model *category, int finetune)
+neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r, const unwrap_plan *plan)
+{
+    neuv_status s = plan->apply ? unwrap_apply_place(r, plan->apply) : pack_afresh(r);
+    if (s != NEUV_OK) return s;
+    if (plan->model) /* the model's inference: every stage after cleaning, the metrics aside */
+        r->model.inference_seconds = r->seconds[STAGE_PATCHES] + r->seconds[STAGE_PARAM] +
+                                     r->seconds[STAGE_REPAIR] + r->seconds[STAGE_PACK] +
+                                     (plan->apply ? 0 : r->seconds[STAGE_OPERATORS]);
+
+    /* The metrics of the mesh as `neuv eval` will read it back (positions welded). */
+    double t = now_seconds();
+    s = unwrap_metrics(r->mesh, &r->metrics);
+    unwrap_stage_time(r, STAGE_METRICS, t);
+    return stage_end(r, s);
+}
+
+neuv_status unwrap_run_stages(struct neuv_unwrap_result *r, const neuv_mesh *in, const unwrap_plan *plan)
 {
     float *features = NULL;
     int feature_dim = 0;
-    neuv_status s = unwrap_stage_charts(r, in, keep_model, category, &features, &feature_dim);
-    if (s == NEUV_OK) s = unwrap_stage_param(r, keep_model, category, finetune, features, feature_dim);
+    neuv_status s = unwrap_stage_charts(r, in, plan, &features, &feature_dim);
+    if (s == NEUV_OK) s = unwrap_stage_param(r, plan, features, feature_dim);
     mem_free(features);
-    if (s == NEUV_OK) s = unwrap_stage_pack(r);
+    if (s == NEUV_OK) s = unwrap_stage_pack(r, plan);
     return s;
 }
 
@@ -619,6 +672,9 @@ neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_
     c->chart_lscm_qce = copy_block(r->chart_lscm_qce, sizeof(double) * nc, &failed);
     c->transforms = copy_block(r->transforms, sizeof *r->transforms * nc, &failed);
     c->repairs = copy_block(r->repairs, sizeof *r->repairs * (size_t)r->n_repairs, &failed);
+    c->model.source_chart = copy_block(r->model.source_chart, sizeof(int) * nc, &failed);
+    c->model.vertex_source_chart =
+        copy_block(r->model.vertex_source_chart, sizeof(int) * (size_t)(r->mesh ? r->mesh->nv : 0), &failed);
     c->cap_repairs = c->repairs ? r->n_repairs : 0;
     if (failed) { neuv_unwrap_result_free(c); return error_nomem("a copy of the result"); }
     *out = c;
@@ -632,10 +688,15 @@ neuv_status unwrap_result_new(const neuv_unwrap_options *opts, struct neuv_unwra
     if (!r) return error_nomem("the result");
     if (opts) r->opts = *opts;
     else neuv_unwrap_options_init(&r->opts);
-    if (r->opts.resolution < 64 || r->opts.resolution > 16384)
-        { mem_free(r); return error_set(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
-    if (r->opts.padding < 0 || r->opts.padding > r->opts.resolution / 8)
-        { mem_free(r); return error_set(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
+    int res = r->opts.resolution, pad = r->opts.padding;
+    if (res < 64 || res > 16384) {
+        mem_free(r);
+        return error_set(NEUV_ERR_INPUT, "the atlas resolution must be in 64..16384 pixels (got %d)", res);
+    }
+    if (pad < 0 || pad > res / 8) {
+        mem_free(r);
+        return error_set(NEUV_ERR_INPUT, "the padding must be in 0..resolution/8 = 0..%d pixels (got %d)", res / 8, pad);
+    }
     if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;
     *out = r;
@@ -650,8 +711,8 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
     struct neuv_unwrap_result *r = NULL;
     neuv_status s = unwrap_result_new(opts, &r);
     if (s != NEUV_OK) return s;
-    s = run_pipeline(r, mesh, keep_model, NULL, 0);
-    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
+    unwrap_plan plan = {NULL, keep_model, 0, NULL};
+    s = unwrap_run_stages(r, mesh, &plan);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     *out = r;
     return NEUV_OK;
@@ -685,11 +746,10 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
     r->model.category = 1;
     r->model.finetune = finetune;
     r->model.shared_layer = shared_layer;
-    neuv_status s = run_pipeline(r, mesh, 0, category, finetune);
-    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
+    unwrap_plan plan = {category, 0, finetune, NULL};
+    neuv_status s = unwrap_run_stages(r, mesh, &plan);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     r->model.network_charts = r->neural_charts;
-    r->model.inference_seconds = r->total_seconds - r->seconds[STAGE_METRICS];
     *out = r;
     return NEUV_OK;
 }
@@ -710,6 +770,8 @@ void neuv_unwrap_result_free(neuv_unwrap_result *r)
     mem_free(r->chart_net_qce);
     mem_free(r->chart_lscm_qce);
     mem_free(r->face_label);
+    mem_free(r->model.source_chart);
+    mem_free(r->model.vertex_source_chart);
     if (r->patchnet) patchnet_model_free(r->patchnet);
     mem_free(r->patchnet);
     param_net_model_free(r->param);

@@ -548,6 +548,33 @@ static double span_area(const chart_span *sp)
     return (sp->hi[0] - sp->lo[0]) * (sp->hi[1] - sp->lo[1]);
 }
 
+/* Each chart's range of UVs (its corners' UV indices: the charts' UVs lie
+ * one after the other, unwrap_assemble_uvs) and whether a fold repair
+ * re-flattened it. */
+static neuv_status chart_spans(const struct neuv_unwrap_result *r, chart_span **out)
+{
+    *out = NULL;
+    const neuv_mesh *m = r->mesh;
+    chart_span *span = mem_calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *span);
+    if (!span) return error_nomem("charts");
+    for (int c = 0; c < r->n_charts; c++) span[c].first = -1;
+    for (int f = 0; f < m->nf; f++) {
+        chart_span *sp = &span[r->face_chart[f]];
+        for (int k = 0; k < 3; k++) {
+            int i = m->tri_uv[3 * (size_t)f + k];
+            if (sp->first < 0) { sp->first = i; sp->count = 1; continue; }
+            if (i < sp->first) { sp->count += sp->first - i; sp->first = i; }
+            if (i >= sp->first + sp->count) sp->count = i - sp->first + 1;
+        }
+    }
+    for (int c = 0; c < r->n_charts; c++) {
+        if (span[c].first < 0) span[c].first = 0;
+        span[c].repaired = r->chart_source && r->chart_source[c] == CHART_SOURCE_LSCM_AFTER_FOLD;
+    }
+    *out = span;
+    return NEUV_OK;
+}
+
 /* Overlaps made by the new triangulation itself, mended without moving a
  * chart: a face across the source's seam belongs to one side, and its
  * corner past the seam continues its chart's map beyond the island's
@@ -862,39 +889,18 @@ static neuv_status check_inference(struct neuv_unwrap_result *r, const unwrap_mo
 
 #define REFINE_MAX_FACES 250000
 
-static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh *in, const unwrap_model *md,
-                                  const unwrap_apply_options *o)
+neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model *md, const unwrap_apply_options *o)
 {
-    double t = now_seconds(), t_start = t;
+    neuv_mesh *m = r->mesh;
     neuv_status s;
-    neuv_mesh *m = mesh_clone(in);
-    if (!m) return error_nomem("the mesh");
-    r->mesh = m;
-    r->input_vertices = in->nv;
-    r->input_faces = in->nf;
-    mesh_set_uv(m, 0, NULL, NULL);
-    if ((s = mesh_clean(m, NULL, &r->clean)) != NEUV_OK) return s;
-    if (m->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
-    /* Vertex refinement costs ~0.5 µs per face and step (spot: 400 steps in
-     * 1.1 s) and moves a vertex a share of an edge per step, so on a very fine
-     * mesh it is slow and does little: such meshes keep the networks' map. */
-    int refine = md->refine;
-    if (refine > 0 && m->nf > REFINE_MAX_FACES) {
-        log_message(NEUV_LOG_INFO, "vertex refinement skipped: %d faces (more than %d)", m->nf, REFINE_MAX_FACES);
-        refine = 0;
-    }
-    r->seconds[STAGE_CLEAN] = now_seconds() - t;
-    double t_infer = now_seconds();
-
-    /* Charts. */
-    t = now_seconds();
+    double t = now_seconds();
     log_progress("patches", 0, "charts from the model's source surface");
     int *label = mem_alloc(sizeof(int) * (size_t)m->nf);
     int *src_face = mem_alloc(sizeof(int) * (size_t)m->nf);
-    int *vertex_chart = mem_alloc(sizeof(int) * (size_t)m->nv);
+    int *vertex_chart = r->model.vertex_source_chart = mem_alloc(sizeof(int) * (size_t)m->nv);
     r->face_chart = mem_alloc(sizeof(int) * (size_t)m->nf);
     if (!label || !src_face || !vertex_chart || !r->face_chart) {
-        mem_free(label); mem_free(src_face); mem_free(vertex_chart);
+        mem_free(label); mem_free(src_face);
         return error_nomem("charts");
     }
     double dist = 0;
@@ -916,7 +922,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
         r->model.settled_faces = settled;
     }
     /* Compact ids: source charts that got no face are dropped. */
-    int *model_chart = mem_alloc(sizeof(int) * (size_t)md->n_charts);
+    int *model_chart = r->model.source_chart = mem_alloc(sizeof(int) * (size_t)md->n_charts);
     int *new_id = mem_alloc(sizeof(int) * (size_t)md->n_charts);
     if (s == NEUV_OK && (!model_chart || !new_id)) s = error_nomem("charts");
     if (s == NEUV_OK) {
@@ -930,23 +936,41 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     }
     mem_free(label);
     mem_free(new_id);
-    r->seconds[STAGE_PATCHES] = now_seconds() - t;
-    double t_check = now_seconds();
-    if (s == NEUV_OK && o->check_inference) s = check_inference(r, md, src_face, o->use_cache);
+    unwrap_stage_time(r, STAGE_PATCHES, t);
+    if (s == NEUV_OK && o->check_inference) { /* a diagnostic, timed with the operators it computes */
+        t = now_seconds();
+        s = check_inference(r, md, src_face, o->use_cache);
+        unwrap_stage_time(r, STAGE_OPERATORS, t);
+    }
     mem_free(src_face);
-    if (s) { mem_free(model_chart); mem_free(vertex_chart); return s; }
-    t_infer += now_seconds() - t_check; /* the inference time leaves the diagnostic out */
+    return s;
+}
 
+
+neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model *md, const unwrap_apply_options *o)
+{
+    neuv_mesh *m = r->mesh;
+    neuv_status s = NEUV_OK;
+    double t = now_seconds();
+    int *model_chart = r->model.source_chart, *vertex_chart = r->model.vertex_source_chart;
+    if (!model_chart || !vertex_chart) return error_set(NEUV_ERR_INTERNAL, "the model's charts were not carried first");
+    /* Vertex refinement costs ~0.5 µs per face and step (spot: 400 steps in
+     * 1.1 s) and moves a vertex a share of an edge per step, so on a very fine
+     * mesh it is slow and does little: such meshes keep the networks' map. */
+    int refine = md->refine;
+    if (refine > 0 && m->nf > REFINE_MAX_FACES) {
+        log_message(NEUV_LOG_INFO, "vertex refinement skipped: %d faces (more than %d)", m->nf, REFINE_MAX_FACES);
+        refine = 0;
+    }
     /* UVs of every chart in the source's atlas frame, checked; folded ones repaired. */
-    t = now_seconds();
     int cap = r->n_charts + 16;
     chart_piece *pieces = mem_calloc((size_t)cap, sizeof *pieces);
     int *repaired = mem_calloc((size_t)cap, sizeof(int));
     int *mc_grown = mem_realloc(model_chart, sizeof(int) * (size_t)cap);
     double **anchor = mem_calloc((size_t)cap, sizeof *anchor);
-    if (mc_grown) model_chart = mc_grown;
+    if (mc_grown) model_chart = r->model.source_chart = mc_grown;
     if (!pieces || !repaired || !mc_grown || !anchor) {
-        mem_free(pieces); mem_free(repaired); mem_free(model_chart); mem_free(anchor); mem_free(vertex_chart);
+        mem_free(pieces); mem_free(repaired); mem_free(anchor);
         return error_nomem("charts");
     }
     /* The source's refinement is carried over (its difference to the networks'
@@ -961,7 +985,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             int *nr = mem_realloc(repaired, sizeof(int) * (size_t)nc);
             if (nr) { memset(nr + cap, 0, sizeof(int) * (size_t)(nc - cap)); repaired = nr; }
             int *nm = mem_realloc(model_chart, sizeof(int) * (size_t)nc);
-            if (nm) model_chart = nm;
+            if (nm) model_chart = r->model.source_chart = nm;
             double **na = mem_realloc(anchor, sizeof *na * (size_t)nc);
             if (na) { memset(na + cap, 0, sizeof *na * (size_t)(nc - cap)); anchor = na; }
             if (!np || !nr || !nm || !na) { s = error_nomem("charts"); break; }
@@ -1109,7 +1133,7 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
                     s = charts_split(m, r->face_chart, &r->n_charts, c);
                     if (s == NEUV_OK && r->n_charts > cap) {
                         int *nm = mem_realloc(model_chart, sizeof(int) * (size_t)r->n_charts);
-                        if (nm) model_chart = nm;
+                        if (nm) model_chart = r->model.source_chart = nm;
                         else s = error_nomem("charts");
                     }
                     for (int k = before; s == NEUV_OK && k < r->n_charts; k++) model_chart[k] = mc;
@@ -1137,21 +1161,15 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
     r->model.refinement_carried = carry_refinement;
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
-    chart_span *span = s == NEUV_OK ? mem_calloc((size_t)r->n_charts, sizeof *span) : NULL;
-    if (s == NEUV_OK && !span) s = error_nomem("charts");
-    for (int c = 0, base = 0; s == NEUV_OK && c < r->n_charts; c++) {
-        span[c].first = base;
-        span[c].count = pieces[c].sub->nv;
-        span[c].repaired = repaired[c];
-        base += pieces[c].sub->nv;
-    }
     mem_free(repaired);
     r->neural_charts = r->model.network_charts;
-    r->seconds[STAGE_PARAM] = now_seconds() - t;
+    unwrap_stage_time(r, STAGE_PARAM, t);
 
-    /* The whole atlas: no chart on another, inside the unit square, each
-     * chart where the source put it. */
+    /* Corners past a source seam pulled back onto their island where the
+     * chart overlaps another or leaves the square. */
     t = now_seconds();
+    chart_span *span = NULL;
+    if (s == NEUV_OK) s = chart_spans(r, &span);
     r->transforms = mem_calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *r->transforms);
     if (s == NEUV_OK && !r->transforms) s = error_nomem("chart transforms");
     for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->transforms[c] = md->xf[model_chart[c]];
@@ -1159,11 +1177,28 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
      * pulling corners flattens border faces (camelhead: qce_mean 1.020 ->
      * 1.027): the shrinking alone resolves overlaps there. */
     if (s == NEUV_OK && !o->refine_on_mesh) s = pull_past_borders(r, span, pieces, anchor, model_chart, vertex_chart);
-    mem_free(model_chart);
+    mem_free(span);
     for (int c = 0; c < cap; c++) { unwrap_piece_clear(&pieces[c]); mem_free(anchor[c]); }
     mem_free(pieces);
     mem_free(anchor);
-    mem_free(vertex_chart);
+    /* What carried the source's charts here is not needed past this stage. */
+    mem_free(r->model.source_chart);
+    mem_free(r->model.vertex_source_chart);
+    r->model.source_chart = r->model.vertex_source_chart = NULL;
+    unwrap_stage_time(r, STAGE_REPAIR, t);
+    return s;
+}
+
+
+neuv_status unwrap_apply_place(struct neuv_unwrap_result *r, const unwrap_apply_options *o)
+{
+    neuv_mesh *m = r->mesh;
+    double t = now_seconds();
+    /* The whole atlas: no chart on another, inside the unit square, each
+     * chart where the source put it. */
+    log_progress("pack", 0, "%d charts where the model's atlas has them", r->n_charts);
+    chart_span *span = NULL;
+    neuv_status s = chart_spans(r, &span);
     if (s == NEUV_OK) pull_charts_inside(r, span);
     if (s == NEUV_OK) s = resolve_overlaps(r, span);
     if (s == NEUV_OK) fit_unit_square(r, span);
@@ -1192,16 +1227,10 @@ static neuv_status apply_pipeline(struct neuv_unwrap_result *r, const neuv_mesh 
             unwrap_add_repair(r, -1, "%lld overlapped pixel centres remain (at %d px) after the charts were shrunk",
                               cov.overlapped, OVERLAP_RESOLUTION);
     }
-    r->seconds[STAGE_REPAIR] = now_seconds() - t;
-    r->model.inference_seconds = now_seconds() - t_infer;
-    if (s) return s;
-
-    t = now_seconds();
-    s = unwrap_metrics(m, &r->metrics);
-    r->seconds[STAGE_METRICS] = now_seconds() - t;
-    r->total_seconds = now_seconds() - t_start;
+    unwrap_stage_time(r, STAGE_PACK, t);
     return s;
 }
+
 
 static void opts_from_model(neuv_unwrap_options *opts, const unwrap_model *md)
 {
@@ -1221,16 +1250,16 @@ neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *md, const un
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
     unwrap_apply_options def = {0, 1, 0, 0, 0};
     if (!o) o = &def;
-    struct neuv_unwrap_result *r = mem_calloc(1, sizeof *r);
-    if (!r) return error_nomem("the result");
-    opts_from_model(&r->opts, md);
-    r->opts.threads = o->threads;
-    r->opts.use_cache = o->use_cache;
+    neuv_unwrap_options opts;
+    opts_from_model(&opts, md);
+    opts.threads = o->threads;
+    opts.use_cache = o->use_cache;
+    struct neuv_unwrap_result *r = NULL;
+    neuv_status s = unwrap_result_new(&opts, &r);
+    if (s != NEUV_OK) return s;
     r->model.used = 1;
-    r->model.label_agreement = -1;
-    if (o->threads > 0) nn_set_threads(o->threads);
-    neuv_status s = apply_pipeline(r, mesh, md, o);
-    if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
+    unwrap_plan plan = {md, 0, 0, o};
+    s = unwrap_run_stages(r, mesh, &plan);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     *out = r;
     return NEUV_OK;

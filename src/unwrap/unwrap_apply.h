@@ -74,6 +74,25 @@ typedef struct unwrap_apply_options {
 neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *model, const unwrap_apply_options *o,
                          neuv_unwrap_result **out);
 
+/* The bodies of the pipeline's stages (unwrap_internal.h unwrap_run_stages)
+ * for a surface model carried to r->mesh, already cleaned:
+ * charts: each face takes the model's chart by closest point, fragments
+ *   merged, border faces settled (r->face_chart, r->n_charts); with
+ *   o->check_inference also PatchNet's agreement with the stored labels.
+ * param: each chart's UVs in the source's atlas frame (the networks at the
+ *   new vertices, or the source's map), checked and repaired; then corners
+ *   past a seam pulled onto their island; per-corner UVs in r->mesh and
+ *   r->transforms (the source's placement of each chart).
+ * place: the charts kept where the source's atlas has them: moved inside
+ *   the square, overlaps shrunk, then moved to free space (repacked afresh
+ *   only with o->refine_on_mesh, where the layout is a copy's).
+ * Each returns NEUV_OK, NEUV_ERR_NOMEM or NEUV_ERR_INTERNAL, and times itself
+ * into r->seconds. */
+struct neuv_unwrap_result;
+neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model *model, const unwrap_apply_options *o);
+neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model *model, const unwrap_apply_options *o);
+neuv_status unwrap_apply_place(struct neuv_unwrap_result *r, const unwrap_apply_options *o);
+
 /* The pipeline with a face budget: when mesh has more than train_faces faces
  * (train_faces > 0), trains on a simplified copy (mesh_simplify) and applies
  * the model to the full mesh; otherwise runs unwrap_train. With model_out

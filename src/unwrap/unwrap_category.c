@@ -1,6 +1,7 @@
 /* Training a category model: see unwrap_category.h. */
 #include "unwrap/unwrap_category.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,6 +16,7 @@
 #include "models/patchnet.h"
 #include "nn/nn.h"
 #include "segment/patchnet_segment.h"
+#include "unwrap/unwrap_internal.h"
 
 #define CATEGORY_PSI_NOISE 0.5
 
@@ -73,13 +75,15 @@ static neuv_status join_shapes(const category_shape *sh, int n, neuv_mesh **join
 
 static neuv_status prepare_shape(const neuv_mesh *in, int index, int use_cache, category_shape *c)
 {
-    c->mesh = mesh_clone(in);
-    if (!c->mesh) return error_nomem("the shapes");
-    mesh_set_uv(c->mesh, 0, NULL, NULL);
-    neuv_status s = mesh_clean(c->mesh, NULL, NULL);
+    /* The pipeline's own cleaning (unwrap_internal.h), so that a shape is
+     * trained on as an unseen shape will be unwrapped. */
+    neuv_status s = unwrap_clean_copy(in, &c->mesh, NULL);
+    if (s == NEUV_ERR_INPUT) {
+        char why[256];
+        snprintf(why, sizeof why, "%s", neuv_last_error());
+        return error_set(NEUV_ERR_INPUT, "shape %d: %s", index + 1, why);
+    }
     if (s != NEUV_OK) return s;
-    if (c->mesh->nf == 0 || !(mesh_total_area(c->mesh) > 0))
-        return error_set(NEUV_ERR_INPUT, "shape %d has no faces of non-zero area after cleaning", index + 1);
     operators_params op = operators_default_params();
     return operators_get(c->mesh, &op, use_cache, &c->ops, NULL, NULL);
 }

@@ -86,6 +86,9 @@ struct neuv_unwrap_result {
         int finetune;             /* category: training steps from the model's weights (0: inference only) */
         int shared_layer;         /* category inference: 1, the shared output layer maps every chart; 0, a
                                      head per chart solved on this shape (param_net_infer) */
+        /* Surface model, between the charts and param stages only (NULL otherwise): */
+        int *source_chart;        /* n_charts: the model's chart each chart was carried from */
+        int *vertex_source_chart; /* #V: the model's chart under each vertex (closest point) */
     } model;
 };
 
@@ -164,24 +167,52 @@ neuv_status unwrap_result_new(const neuv_unwrap_options *opts, struct neuv_unwra
  * face_label, patchnet and param left NULL), to run a stage again from. */
 neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_unwrap_result **out);
 
-/* The stages of the pipeline, in order, on one result (from
- * unwrap_result_new), each timed into r->seconds and r->total_seconds, each
- * stopping with NEUV_ERR_CANCELLED when the progress callback asks.
- * charts: cleans a copy of `in` into r->mesh, operators, PatchNet's charts
- *   (category: the model's PatchNet by inference); *features (#F by
- *   *feature_dim DiffusionNet features, caller frees) for the next stage.
- * param: the networks' map (or the classic method), repair, refinement;
- *   per-corner chart UVs in r->mesh. category with finetune: that many
- *   steps from the model's weights.
- * pack: charts split where they pack badly, packing, metrics.
+/* Where a run's charts and maps come from, for the stages below:
+ * - model NULL: trained on this mesh (PatchNet, then the parameterization
+ *   networks or the classic method of opts);
+ * - a category model (model->category): its PatchNet and networks by
+ *   inference, or with finetune > 0 that many training steps from its weights;
+ * - a surface model with apply set: the model's charts and maps carried to
+ *   this triangulation (unwrap_apply.h).
  * keep_model: also keep what a saved model needs (chart_net,
- * chart_mirrored, face_label, patchnet, param). */
+ * chart_mirrored, face_label, patchnet, param); training only. */
 struct unwrap_model;
-neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model,
-                                const struct unwrap_model *category, float **features, int *feature_dim);
-neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, int keep_model, const struct unwrap_model *category,
-                               int finetune, const float *features, int feature_dim);
-neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r);
+struct unwrap_apply_options;
+typedef struct unwrap_plan {
+    const struct unwrap_model *model;
+    int keep_model;
+    int finetune;
+    const struct unwrap_apply_options *apply;
+} unwrap_plan;
+
+/* The stages of the pipeline, in order, on one result (from
+ * unwrap_result_new), whatever the plan: each timed into r->seconds and
+ * r->total_seconds (unwrap_stage_time), each stopping with
+ * NEUV_ERR_CANCELLED when the progress callback asks, and with
+ * NEUV_ERR_NOMEM when a repair note was lost.
+ * charts: cleans a copy of `in` into r->mesh; then charts (training:
+ *   operators and PatchNet; category: the model's PatchNet by inference;
+ *   surface model: carried by closest point); *features (#F by
+ *   *feature_dim DiffusionNet features, caller frees; NULL for a surface
+ *   model) for the next stage.
+ * param: the networks' map (or the classic method, or the model's map
+ *   carried), repair, refinement; per-corner chart UVs in r->mesh.
+ * pack: charts placed (training and category: split where they pack badly,
+ *   then packed; surface model: kept where the source's atlas has them),
+ *   then the metrics. */
+neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *in, const unwrap_plan *plan,
+                                float **features, int *feature_dim);
+neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, const unwrap_plan *plan, const float *features,
+                               int feature_dim);
+neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r, const unwrap_plan *plan);
+/* The three stages one after the other. */
+neuv_status unwrap_run_stages(struct neuv_unwrap_result *r, const neuv_mesh *in, const unwrap_plan *plan);
+/* Adds the seconds since t0 to stage `stage` and updates r->total_seconds
+ * (the sum of the stages): the one clock of every path. */
+void unwrap_stage_time(struct neuv_unwrap_result *r, int stage, double t0);
+/* A copy of `in` without UVs, cleaned (mesh/clean.h; report may be NULL),
+ * refused with NEUV_ERR_INPUT when no face of non-zero area is left. */
+neuv_status unwrap_clean_copy(const neuv_mesh *in, neuv_mesh **out, mesh_clean_report *report);
 
 /* The pipeline; keep_model: also keep the networks and per-chart maps
  * (chart_net, chart_mirrored, face_label, patchnet, param) for a saved model. */
