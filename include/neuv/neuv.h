@@ -544,7 +544,7 @@ typedef struct neuv_component {
     int closed;                /* 1: no boundary */
 } neuv_component;
 
-/* What a mesh is made of once cleaned (`neuv info`). */
+/* What a mesh is made of once cleaned. */
 typedef struct neuv_topology {
     int input_vertices, input_faces;   /* of the mesh as given */
     int vertices, faces;               /* after cleaning */
@@ -560,7 +560,7 @@ typedef struct neuv_topology {
  * faces are all dropped is no error: it has no components. On failure
  * out->components is NULL. */
 NEUV_API neuv_status neuv_mesh_topology(const neuv_mesh *mesh, const neuv_callbacks *cb, neuv_topology *out);
-/* The topology as the JSON of `neuv info --json`: version, input (input_name),
+/* The topology as a JSON document: version, input (input_name),
  * the counts, has_uv, the components and the repairs. Release with
  * neuv_free; NULL when memory runs out. */
 NEUV_API char *neuv_topology_json(const neuv_topology *topology, const char *input_name);
@@ -599,7 +599,7 @@ NEUV_API neuv_status neuv_flatten(neuv_mesh *mesh, neuv_method method, const neu
  *          (every vertex, when cleaning dropped every face). */
 NEUV_API neuv_status neuv_geodesic_distances(const neuv_mesh *mesh, int source, const neuv_callbacks *cb,
                                              double *distances, double *time);
-/* The JSON of `neuv geodesics --json`: input (input_name), source,
+/* Geodesic distances as a JSON document: input (input_name), source,
  * distances (count numbers, null where not finite) and seconds (the
  * caller's timing). Release with neuv_free; NULL when memory runs out. */
 NEUV_API char *neuv_geodesics_json(const char *input_name, int source, const double *distances, int count,
@@ -643,7 +643,7 @@ typedef struct neuv_operators_info {
     int cache_hit;             /* 1: read from cache_path; 0: computed (and written there) */
 } neuv_operators_info;
 NEUV_API void neuv_operators_get_info(const neuv_operators *ops, neuv_operators_info *out);
-/* The JSON of `neuv operators --json`: version, input (input_name), the
+/* The operators' summary as a JSON document: version, input (input_name), the
  * counts, eigenvalues, HKS times, seconds (load_seconds: the caller's
  * reading of the file) and the cache. Release with neuv_free; NULL when
  * memory runs out. */
@@ -765,7 +765,7 @@ typedef struct neuv_segment_report {
  *          NEUV_ERR_CANCELLED. */
 NEUV_API neuv_status neuv_segment(const neuv_mesh *mesh, const neuv_segment_options *o, const neuv_callbacks *cb,
                                   int *face_chart, int *chart_count, neuv_segment_report *report);
-/* The JSON of `neuv segment --json`: input and output (the caller's file
+/* A segmentation as a JSON document: input and output (the caller's file
  * names), the report, and seconds (load_seconds and total_seconds: the
  * caller's). Release with neuv_free; NULL when memory runs out. */
 NEUV_API char *neuv_segment_report_json(const neuv_segment_report *report, const char *input_name,
@@ -814,7 +814,7 @@ typedef struct neuv_uv_comparison {
  * NULL). NEUV_ERR_INPUT when a mesh has no faces or no UVs. */
 NEUV_API neuv_status neuv_compare_uvs(const neuv_mesh *a, const neuv_mesh *b, const neuv_callbacks *cb,
                                       neuv_uv_comparison *out);
-/* The JSON of `neuv compare --json`, naming the two files. Release with
+/* A comparison as a JSON document, naming the two files. Release with
  * neuv_free; NULL when memory runs out. */
 NEUV_API char *neuv_uv_comparison_json(const neuv_uv_comparison *c, const char *a_name, const char *b_name);
 
@@ -846,7 +846,7 @@ typedef struct neuv_tensor_info {
 } neuv_tensor_info;
 /* Tensor `index` (0..tensor_count-1, in file order). NEUV_ERR_INPUT out of range. */
 NEUV_API neuv_status neuv_checkpoint_get_tensor(const neuv_checkpoint *c, int index, neuv_tensor_info *out);
-/* The JSON of `neuv inspect --json`: file (file_name), version, config,
+/* A checkpoint's contents as a JSON document: file (file_name), version, config,
  * parameters, and each tensor's name, shape and value range. Release with
  * neuv_free; NULL when memory runs out. */
 NEUV_API char *neuv_checkpoint_json(const neuv_checkpoint *c, const char *file_name);

@@ -14,8 +14,8 @@ neuv_status neuv_shape(const char *name, int member, neuv_mesh **out)
     *out = NULL;
     if (!name) return error_set(NEUV_ERR_INPUT, "no shape name given");
     int family = !strcmp(name, "bent-capsule") || !strcmp(name, "blob");
-    if (member != -1 && !family) return error_set(NEUV_ERR_INPUT, "--member applies to bent-capsule and blob only");
-    if (family && member < 0) return error_set(NEUV_ERR_INPUT, "%s needs --member I (I >= 0)", name);
+    if (member != -1 && !family) return error_set(NEUV_ERR_INPUT, "a member index applies to the bent-capsule and blob families only");
+    if (family && member < 0) return error_set(NEUV_ERR_INPUT, "%s is a family: it needs a member index >= 0", name);
     neuv_mesh *m = NULL;
     if (!strcmp(name, "bent-capsule")) m = shape_capsule_family((uint64_t)member);
     else if (family) m = shape_blob_family((uint64_t)member);
