@@ -418,11 +418,13 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
     p->psi_mode = PARAM_PSI_POOLED;
     p->psi_dim = (int)psi;
     p->n_charts = n;
-    p->psi = mem_alloc(sizeof(float) * (size_t)n * (size_t)psi);
-    p->center = mem_alloc(sizeof(double) * 3 * (size_t)n);
-    p->scale = mem_alloc(sizeof(double) * (size_t)n);
-    p->rot = mem_alloc(sizeof(double) * 9 * (size_t)n);
-    p->mirror = mem_alloc(sizeof(int) * (size_t)n);
+    if (n > 0) { /* a category model has no chart of its own */
+        p->psi = mem_alloc(sizeof(float) * (size_t)n * (size_t)psi);
+        p->center = mem_alloc(sizeof(double) * 3 * (size_t)n);
+        p->scale = mem_alloc(sizeof(double) * (size_t)n);
+        p->rot = mem_alloc(sizeof(double) * 9 * (size_t)n);
+        p->mirror = mem_alloc(sizeof(int) * (size_t)n);
+    }
     double *frame = mem_alloc(sizeof(double) * 13 * (size_t)n + 1);
     if ((n > 0 && (!p->psi || !p->center || !p->scale || !p->rot || !p->mirror)) || !frame) {
         mem_free(frame);
