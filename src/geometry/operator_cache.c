@@ -26,13 +26,34 @@ typedef struct cache_header {
     double sigma;
 } cache_header;
 
-uint64_t operator_cache_key(const neuv_mesh *m, const operators_params *p)
+#ifndef NEUV_OPERATORS_CODE_HASH
+#error "NEUV_OPERATORS_CODE_HASH is defined by CMakeLists.txt (the digest of the operators' code)"
+#endif
+
+const char *operator_cache_code_hash(void)
+{
+    return NEUV_OPERATORS_CODE_HASH;
+}
+
+/* A new field in operators_params changes what the operators are: it must
+ * enter the key below, and then this size. */
+_Static_assert(sizeof(operators_params) == 2 * sizeof(int), "operators_params changed: add its new field to the cache key");
+
+uint64_t operator_cache_key_for(const neuv_mesh *m, const operators_params *p, const char *code_hash)
 {
     operators_params q = p ? *p : operators_default_params();
+    /* Field by field (no padding bytes), sizes first so that the arrays
+     * after them cannot shift into one another. */
     int32_t head[5] = {m->nv, m->nf, q.k, q.n_hks, OPERATOR_CACHE_VERSION};
     uint64_t h = hash_bytes(HASH_INIT, head, sizeof head);
+    h = hash_bytes(h, code_hash, strlen(code_hash) + 1);
     h = hash_bytes(h, m->pos, (size_t)m->nv * 3 * sizeof *m->pos);
     return hash_bytes(h, m->tri, (size_t)m->nf * 3 * sizeof *m->tri);
+}
+
+uint64_t operator_cache_key(const neuv_mesh *m, const operators_params *p)
+{
+    return operator_cache_key_for(m, p, operator_cache_code_hash());
 }
 
 /* mkdir -p */

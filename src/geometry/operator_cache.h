@@ -1,13 +1,24 @@
-/* On-disk cache of the geometry operators, keyed by the mesh content and the
- * parameters, so a mesh seen before skips the eigen solve.
+/* On-disk cache of the geometry operators, keyed by the mesh content, the
+ * parameters and the code that computes them, so a mesh seen before skips
+ * the eigen solve.
  *
  * Folder: $XDG_CACHE_HOME/neuv, else $HOME/.cache/neuv (created on demand).
  * File ops-<key as 16 hex digits>.bin: magic "NEUVOPS\0", format version,
  * byte-order mark, key, sizes, the arrays of `operators`, then a CRC-32 of
- * everything before it. Written atomically (temp file + rename). A file
- * whose magic, version, byte order, key, sizes, length, CRC or sparse
- * structure is wrong is never trusted: it is ignored (logged at debug level)
- * and rebuilt. */
+ * everything before it. Written atomically (temp file + rename), so a
+ * reader sees the old file or the new one, never half of one.
+ *
+ * Key (operator_cache_key): FNV-1a 64 over #V, #F, every field of
+ * operators_params (k, n_hks), the format version, the digest of the
+ * operators' code (operator_cache_code_hash), the positions and the
+ * triangles, all as their bytes. Everything else the operators depend on
+ * (the HKS times, derived from the eigenvalues; the eigen shift sigma, from
+ * L and M; the solver tolerances, seeds and restarts, constants in
+ * eigenbasis.c) is a function of these.
+ *
+ * Reading never trusts a file: one whose magic, version, byte order, key,
+ * sizes, length, CRC or sparse structure is wrong is ignored (logged at
+ * debug level) and rebuilt. */
 #ifndef NEUV_GEOMETRY_OPERATOR_CACHE_H
 #define NEUV_GEOMETRY_OPERATOR_CACHE_H
 
@@ -17,7 +28,15 @@
 
 #define OPERATOR_CACHE_VERSION 1
 
-/* FNV-1a 64 of #V, #F, positions, faces, k, n_hks and the format version. */
+/* The digest of the code that computes the operators: 64 hex digits, a
+ * SHA-256 that CMake computes at configure time (CMakeLists.txt,
+ * NEUV_OPERATORS_CODE_FILES). */
+const char *operator_cache_code_hash(void);
+
+/* The key of m's operators under params p (NULL: defaults), as computed by
+ * the code whose digest is code_hash. */
+uint64_t operator_cache_key_for(const neuv_mesh *m, const operators_params *p, const char *code_hash);
+/* operator_cache_key_for(m, p, operator_cache_code_hash()). */
 uint64_t operator_cache_key(const neuv_mesh *m, const operators_params *p);
 
 /* The cache folder, created if missing. Outputs: *dir (caller frees).
