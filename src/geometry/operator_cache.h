@@ -17,8 +17,9 @@
  * eigenbasis.c) is a function of these.
  *
  * Reading never trusts a file: one whose magic, version, byte order, key,
- * sizes, length, CRC or sparse structure is wrong is ignored (logged at
- * debug level) and rebuilt. */
+ * sizes, length, CRC or sparse structure is wrong, an empty one, a folder
+ * in its place, one that cannot be opened, are all a miss: logged (info),
+ * recomputed and rewritten. Only running out of memory is an error. */
 #ifndef NEUV_GEOMETRY_OPERATOR_CACHE_H
 #define NEUV_GEOMETRY_OPERATOR_CACHE_H
 
@@ -48,12 +49,17 @@ neuv_status operator_cache_save(const char *path, uint64_t key, const operators 
 
 /* Reads path into ops (zeroed first), checking everything listed above
  * against key and the expected sizes (nv, k, n_hks).
- * Fails with NEUV_ERR_IO, message saying what was wrong, on any mismatch. */
+ * Fails with NEUV_ERR_IO, message saying what was wrong, on any mismatch or
+ * read failure; NEUV_ERR_NOMEM when out of memory. ops is left zeroed on
+ * failure. */
 neuv_status operator_cache_load(const char *path, uint64_t key, int nv, int k, int n_hks, operators *ops);
 
 /* The operators of m: from the cache when a valid file exists, else computed
- * (and saved when use_cache is set). A cache that cannot be read or written
- * is never an error, only a debug message.
+ * (and saved when use_cache is set). A cache file that cannot be used is
+ * never an error, only an info message, and is replaced; a cache folder that
+ * cannot be made or written, a debug message. Fails with what
+ * operators_compute fails with, or NEUV_ERR_NOMEM when out of memory
+ * anywhere, the cache included.
  * Inputs:  m, params (NULL for defaults), use_cache (0: compute, touch no file)
  * Outputs: ops; cache_path (may be NULL; set to the file path or NULL when
  *          use_cache is 0, caller frees); cache_hit (may be NULL) */
