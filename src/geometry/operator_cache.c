@@ -13,6 +13,10 @@
 #include "core/timer.h"
 #include "geometry/operator_cache.h"
 
+/* NEUV_OPERATORS_CODE_HASH: generated at configure time into the build
+ * folder (CMakeLists.txt), not a header of src/, hence the angle brackets. */
+#include <operators_code_hash.h>
+
 static const char CACHE_MAGIC[8] = {'N', 'E', 'U', 'V', 'O', 'P', 'S', '\0'};
 static const uint32_t BYTE_ORDER_MARK = 0x01020304u;
 
@@ -25,10 +29,6 @@ typedef struct cache_header {
     int64_t nnz_L, nnz_gx, nnz_gy;
     double sigma;
 } cache_header;
-
-#ifndef NEUV_OPERATORS_CODE_HASH
-#error "NEUV_OPERATORS_CODE_HASH is defined by CMakeLists.txt (the digest of the operators' code)"
-#endif
 
 const char *operator_cache_code_hash(void)
 {
