@@ -13,6 +13,10 @@
 #include "core/timer.h"
 #include "geometry/operator_cache.h"
 
+/* NEUV_OPERATORS_CODE_HASH: generated at configure time into the build
+ * folder (CMakeLists.txt), not a header of src/, hence the angle brackets. */
+#include <operators_code_hash.h>
+
 static const char CACHE_MAGIC[8] = {'N', 'E', 'U', 'V', 'O', 'P', 'S', '\0'};
 static const uint32_t BYTE_ORDER_MARK = 0x01020304u;
 
@@ -26,13 +30,30 @@ typedef struct cache_header {
     double sigma;
 } cache_header;
 
-uint64_t operator_cache_key(const neuv_mesh *m, const operators_params *p)
+const char *operator_cache_code_hash(void)
+{
+    return NEUV_OPERATORS_CODE_HASH;
+}
+
+/* A new field in operators_params changes what the operators are: it must
+ * enter the key below, and then this size. */
+_Static_assert(sizeof(operators_params) == 2 * sizeof(int), "operators_params changed: add its new field to the cache key");
+
+uint64_t operator_cache_key_for(const neuv_mesh *m, const operators_params *p, const char *code_hash)
 {
     operators_params q = p ? *p : operators_default_params();
+    /* Field by field (no padding bytes), sizes first so that the arrays
+     * after them cannot shift into one another. */
     int32_t head[5] = {m->nv, m->nf, q.k, q.n_hks, OPERATOR_CACHE_VERSION};
     uint64_t h = hash_bytes(HASH_INIT, head, sizeof head);
+    h = hash_bytes(h, code_hash, strlen(code_hash) + 1);
     h = hash_bytes(h, m->pos, (size_t)m->nv * 3 * sizeof *m->pos);
     return hash_bytes(h, m->tri, (size_t)m->nf * 3 * sizeof *m->tri);
+}
+
+uint64_t operator_cache_key(const neuv_mesh *m, const operators_params *p)
+{
+    return operator_cache_key_for(m, p, operator_cache_code_hash());
 }
 
 /* mkdir -p */
@@ -201,6 +222,8 @@ neuv_status operator_cache_load(const char *path, uint64_t key, int nv, int k, i
     memset(ops, 0, sizeof *ops);
     FILE *fp = fopen(path, "rb");
     if (!fp) return error_set(NEUV_ERR_IO, "cache file %s: %s", path, strerror(errno));
+    struct stat st;
+    if (fstat(fileno(fp), &st) != 0 || !S_ISREG(st.st_mode)) { fclose(fp); return bad_file(path, "not a regular file"); }
     unsigned char hb[72]; /* the header fields below, packed */
     cache_header h;
     reader hr = {hb, sizeof hb};
@@ -233,8 +256,7 @@ neuv_status operator_cache_load(const char *path, uint64_t key, int nv, int k, i
     size_t doubles = (size_t)h.nnz_L + (size_t)h.nnz_gx + (size_t)h.nnz_gy + n + (size_t)k + n * k + 9 * n +
                      n * n_hks + (size_t)n_hks;
     size_t total = sizeof hb + ints * 4 + doubles * 8 + 4;
-    struct stat st;
-    if (fstat(fileno(fp), &st) != 0 || (size_t)st.st_size != total) {
+    if ((size_t)st.st_size != total) {
         fclose(fp);
         return bad_file(path, "length does not match its header (truncated?)");
     }
@@ -292,19 +314,26 @@ neuv_status operators_get(const neuv_mesh *m, const operators_params *params, in
 
     char *dir = NULL, *path = NULL;
     uint64_t key = operator_cache_key(m, &p);
-    if (operator_cache_dir(&dir) == NEUV_OK) {
+    neuv_status s = operator_cache_dir(&dir);
+    if (s == NEUV_ERR_NOMEM) return s;
+    if (s != NEUV_OK) {
+        log_message(NEUV_LOG_DEBUG, "operator cache off: %s", neuv_last_error());
+    } else {
         path = mem_alloc(strlen(dir) + 32);
         if (path) sprintf(path, "%s/ops-%016llx.bin", dir, (unsigned long long)key);
-    } else {
-        log_message(NEUV_LOG_DEBUG, "operator cache off: %s", neuv_last_error());
+        mem_free(dir);
+        if (!path) return error_nomem("cache path");
     }
-    mem_free(dir);
+    /* Reading: anything but a valid file of this key is a miss. No file is
+     * the usual miss and says nothing; a file that is there and unusable
+     * (damaged, truncated, foreign, a folder) says why, then is replaced. */
     if (path) {
         double t0 = now_seconds();
         struct stat st;
         if (stat(path, &st) == 0) {
             int k = p.k < m->nv ? p.k : m->nv;
-            if (operator_cache_load(path, key, m->nv, k, p.n_hks, ops) == NEUV_OK) {
+            s = operator_cache_load(path, key, m->nv, k, p.n_hks, ops);
+            if (s == NEUV_OK) {
                 ops->seconds.cache_load = now_seconds() - t0;
                 ops->seconds.total = ops->seconds.cache_load;
                 if (cache_hit) *cache_hit = 1;
@@ -312,13 +341,19 @@ neuv_status operators_get(const neuv_mesh *m, const operators_params *params, in
                 log_progress("operators", 1.0, "from cache");
                 return NEUV_OK;
             }
-            log_message(NEUV_LOG_DEBUG, "ignoring operator cache: %s", neuv_last_error());
+            if (s == NEUV_ERR_NOMEM) { mem_free(path); return s; }
+            log_message(NEUV_LOG_INFO, "operator cache not used (%s); recomputing", neuv_last_error());
+        } else if (errno != ENOENT) {
+            log_message(NEUV_LOG_DEBUG, "operator cache file %s: %s; recomputing", path, strerror(errno));
         }
     }
-    neuv_status s = operators_compute(m, &p, ops);
+    s = operators_compute(m, &p, ops);
     if (s) { mem_free(path); return s; }
-    if (path && operator_cache_save(path, key, ops) != NEUV_OK)
-        log_message(NEUV_LOG_DEBUG, "operator cache not written: %s", neuv_last_error());
+    if (path) {
+        s = operator_cache_save(path, key, ops);
+        if (s == NEUV_ERR_NOMEM) { operators_free(ops); mem_free(path); return s; }
+        if (s != NEUV_OK) log_message(NEUV_LOG_DEBUG, "operator cache not written: %s", neuv_last_error());
+    }
     if (cache_path) *cache_path = path; else mem_free(path);
     return NEUV_OK;
 }

@@ -15,6 +15,9 @@
 #define OPERATORS_DEFAULT_K 64
 #define OPERATORS_DEFAULT_HKS 16
 
+/* Every field is part of the operator cache key (operator_cache.c, which
+ * fails to compile when this struct grows until the key covers the new
+ * field). */
 typedef struct operators_params {
     int k;     /* eigenpairs wanted (clamped to #V) */
     int n_hks; /* heat kernel signature times */
@@ -37,7 +40,7 @@ typedef struct operators {
     sparse_matrix grad_x, grad_y; /* #V by #V, gradient components along e1, e2 */
     double *hks;        /* #V by n_hks, area-normalized (heat_kernel_signature.h) */
     double *hks_times;  /* n_hks */
-    double sigma;       /* eigen shift used (0 for the dense path or a cache hit) */
+    double sigma;       /* eigen shift used (0 for the dense path; a cache hit restores it) */
     operators_timings seconds;
 } operators;
 
