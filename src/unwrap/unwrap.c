@@ -633,9 +633,9 @@ neuv_status unwrap_result_new(const neuv_unwrap_options *opts, struct neuv_unwra
     if (opts) r->opts = *opts;
     else neuv_unwrap_options_init(&r->opts);
     if (r->opts.resolution < 64 || r->opts.resolution > 16384)
-        { mem_free(r); return error_set(NEUV_ERR_INPUT, "--resolution must be in 64..16384"); }
+        { mem_free(r); return error_set(NEUV_ERR_INPUT, "resolution must be in 64..16384"); }
     if (r->opts.padding < 0 || r->opts.padding > r->opts.resolution / 8)
-        { mem_free(r); return error_set(NEUV_ERR_INPUT, "--padding must be in 0..resolution/8"); }
+        { mem_free(r); return error_set(NEUV_ERR_INPUT, "padding must be in 0..resolution/8"); }
     if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;
     *out = r;
@@ -658,12 +658,14 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
 }
 
 neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *category, const neuv_unwrap_options *opts,
-                                 int finetune, int shared_layer, neuv_unwrap_result **out)
+                                 int finetune, int shared_layer, int keep_model, neuv_unwrap_result **out)
 {
     *out = NULL;
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
     if (!category || !category->category || !category->patchnet || !category->param)
         return error_set(NEUV_ERR_INPUT, "not a category model");
+    if (keep_model && finetune <= 0)
+        return error_set(NEUV_ERR_INPUT, "keep_model needs finetune > 0: inference trains no networks of this shape's");
     struct neuv_unwrap_result *r = mem_calloc(1, sizeof *r);
     if (!r) return error_nomem("the result");
     neuv_unwrap_options_init(&r->opts);
@@ -685,7 +687,7 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
     r->model.category = 1;
     r->model.finetune = finetune;
     r->model.shared_layer = shared_layer;
-    neuv_status s = run_pipeline(r, mesh, 0, category, finetune);
+    neuv_status s = run_pipeline(r, mesh, keep_model, category, finetune);
     if (s == NEUV_OK && r->repairs_lost) s = error_nomem("a repair note");
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     r->model.network_charts = r->neural_charts;
