@@ -175,7 +175,7 @@ class Atlas:
 
     def generate(self, *, progress=None, **options):
         """All three stages, as `neuv unwrap` runs them (train_faces 20000 by
-        default; keep_model=True turns refinement off unless refine is given).
+        default; keep_model=True gives the same atlas as without).
         Options: those of the three stages, train_faces, keep_model."""
         o = _options.unwrap(options, "Atlas.generate", _options.GENERATE)
         self._call(lib.neuv_atlas_generate, byref(o), progress=progress)

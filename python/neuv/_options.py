@@ -154,13 +154,11 @@ def make(kind, options, allowed, where, converters=None):
 
 def unwrap(options, where, allowed=UNWRAP):
     """neuv_unwrap_options as `neuv unwrap` sets them: train_faces defaults to
-    the CLI's 20000, and keeping a model turns refinement off unless refine is
-    given (the refinement is tied to this mesh's triangles)."""
+    the CLI's 20000 (keep_model changes nothing else: a kept model records
+    the refinement and carries it over when applied)."""
     o = make(_capi.UnwrapOptions, options, allowed, where)
     if "train_faces" not in options:
         o.train_faces = DEFAULT_TRAIN_FACES
-    if options.get("keep_model") and "refine" not in options:
-        o.refine = 0
     return o
 
 

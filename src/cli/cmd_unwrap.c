@@ -99,12 +99,10 @@ int cmd_unwrap(int argc, char **argv)
     if (o.resolution < 64 || o.resolution > 16384) return cli_error(NULL, "--resolution must be in 64..16384");
     if (o.padding < 0 || (!job.model && o.padding > o.resolution / 8))
         return cli_error(NULL, "--padding must be in 0..resolution/8 (%d)", o.resolution / 8);
+    /* A saved model records the refinement and carries it over when it is
+     * applied (docs/transfer.md), so --save-model leaves it on: the atlas is
+     * the same with and without --save-model. */
     if (refine >= 0) o.refine = refine;
-    /* A saved model keeps the networks' map, which is the same on every
-     * triangulation; the vertex refinement is tied to this mesh's triangles
-     * (it moved transferred UVs ~0.006 of the atlas side in cli_model), so
-     * it is off unless asked for. */
-    else if (job.save_model) o.refine = 0;
     if (seed >= 0) o.seed = (unsigned long long)seed;
     else if (seed != -1) return cli_error(NULL, "--seed must be non-negative");
     o.threads = cli_opts.threads;
