@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Issue 8 bench: spot.obj unwrapped with --save-model, the model applied to
+# Issue 8 bench: spot.obj unwrapped with --save-model --refine 0 (the
+# networks' map unrefined, as when the figures were measured), the model applied to
 # the jittered subdivision and to 50% / 20% simplifications of the unwrapped
 # mesh (seams kept, see tests/cli_model.sh), compared with `neuv compare`;
 # beside it two independent unwraps (seeds 1 and 2) as the per-mesh baseline.
@@ -8,7 +9,7 @@ set -eu
 B="$1"; OUT="${2:-/tmp/bench_transfer}"; NEUV="$B/neuv"
 SPOT="${NEUV_SHARED:-/work/shared}/meshes/spot.obj"
 mkdir -p "$OUT"
-"$NEUV" unwrap "$SPOT" -o "$OUT/spot-uv.obj" --save-model "$OUT/spot.neuv" --threads 1 --report "$OUT/src.json" --quiet
+"$NEUV" unwrap "$SPOT" -o "$OUT/spot-uv.obj" --save-model "$OUT/spot.neuv" --refine 0 --threads 1 --report "$OUT/src.json" --quiet
 "$NEUV" unwrap "$SPOT" -o "$OUT/spot-uv2.obj" --seed 2 --threads 1 --quiet
 "$NEUV" remesh "$OUT/spot-uv.obj" -o "$OUT/sub.obj" --subdivide 1 --jitter --quiet
 "$NEUV" remesh "$OUT/spot-uv.obj" -o "$OUT/s50.obj" --simplify 0.5 --quiet

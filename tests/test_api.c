@@ -380,7 +380,7 @@ static void test_models(void)
     neuv_unwrap_options uo = quick_options(NEUV_METHOD_NEURAL);
     neuv_atlas *a = NULL;
     CHECK(neuv_atlas_create(&a) == NEUV_OK && neuv_atlas_add_mesh(a, &d) == NEUV_OK);
-    neuv_model *model = NULL;
+    neuv_model *model = NULL, *model2 = NULL;
     CHECK(neuv_atlas_generate(a, &uo) == NEUV_OK);
     CHECK(neuv_atlas_take_model(a, &model) == NEUV_ERR_INPUT && model == NULL); /* not kept */
     uo.keep_model = 1;
@@ -401,8 +401,23 @@ static void test_models(void)
     ao.finetune = 5;
     CHECK(neuv_atlas_apply_model(b, model, &ao) == NEUV_ERR_INPUT); /* category models only */
     CHECK(strstr(neuv_last_error(), "finetune") != NULL);
+    /* Every field a surface model cannot honour is refused by name, none ignored. */
+    const char *refused[] = {"resolution", "padding", "refine", "allow_overlaps", "shared_layer", "keep_model"};
+    for (int k = 0; k < 6; k++) {
+        neuv_apply_options_init(&ao);
+        if (k == 0) ao.resolution = 512;
+        if (k == 1) ao.padding = 4;
+        if (k == 2) ao.refine = 0;
+        if (k == 3) ao.allow_overlaps = 1;
+        if (k == 4) ao.shared_layer = 1;
+        if (k == 5) ao.keep_model = 1;
+        CHECK(neuv_atlas_apply_model(b, model, &ao) == NEUV_ERR_INPUT);
+        CHECK(strncmp(neuv_last_error(), refused[k], strlen(refused[k])) == 0);
+        CHECK_INT(neuv_atlas_stage(b), 0); /* refused before any work */
+    }
     neuv_apply_options_init(&ao);
     CHECK(neuv_atlas_apply_model(b, model, &ao) == NEUV_OK);
+    CHECK(neuv_atlas_take_model(b, &model2) == NEUV_ERR_INPUT && model2 == NULL); /* nothing kept */
     neuv_report ra, rb;
     CHECK(neuv_atlas_get_report(a, &ra) == NEUV_OK && neuv_atlas_get_report(b, &rb) == NEUV_OK);
     CHECK_INT(rb.from_model, 1);

@@ -448,8 +448,10 @@ NEUV_API void neuv_model_free(neuv_model *model);
 NEUV_API int neuv_model_is_category(const neuv_model *model);
 
 /* The surface model of the atlas's last neuv_atlas_generate, which must
- * have run with keep_model = 1 (else NEUV_ERR_INPUT). Hands the networks
- * over: a second call fails. */
+ * have run with keep_model = 1, or of its last neuv_atlas_apply_model of a
+ * category model with finetune > 0 and keep_model = 1 (this shape, its
+ * charts and atlas, the fine-tuned networks); else NEUV_ERR_INPUT. Hands
+ * the networks over: a second call fails. */
 NEUV_API neuv_status neuv_atlas_take_model(neuv_atlas *atlas, neuv_model **out);
 
 typedef struct neuv_apply_options {
@@ -464,6 +466,11 @@ typedef struct neuv_apply_options {
     int shared_layer;        /* 1: the model's shared output layer maps every chart (no per-chart
                                 layer solved on this shape) */
     int refine;              /* vertex refinement steps; -1 (default): the model's */
+    int resolution;          /* the packing's square in pixels, 64..16384; 0 (default): the model's */
+    int padding;             /* gutter in pixels, 0..resolution/8; -1 (default): the model's */
+    int keep_model;          /* 1 (with finetune > 0): keep this shape's fine-tuned networks, charts and
+                                atlas as a surface model for neuv_atlas_take_model; the atlas is the
+                                same as without */
 } neuv_apply_options;
 NEUV_API void neuv_apply_options_init(neuv_apply_options *o);
 
@@ -471,7 +478,12 @@ NEUV_API void neuv_apply_options_init(neuv_apply_options *o);
  * model carries its atlas over to this triangulation of its surface; a
  * category model charts and maps this unseen shape by inference. Replaces
  * every stage (the atlas is then at stage 3). Options that do not apply to
- * the model's kind are refused with NEUV_ERR_INPUT. */
+ * the model's kind are refused with NEUV_ERR_INPUT, never ignored: a surface
+ * model keeps its source's layout (no resolution, padding, refine,
+ * allow_overlaps, finetune, shared_layer or keep_model), a category model
+ * has no stored labels or charts to compare (no check_inference or
+ * lscm_baseline), and keep_model needs finetune > 0 (inference trains no
+ * networks of this shape's). */
 NEUV_API neuv_status neuv_atlas_apply_model(neuv_atlas *atlas, const neuv_model *model,
                                            const neuv_apply_options *o);
 

@@ -175,7 +175,7 @@ class Atlas:
 
     def generate(self, *, progress=None, **options):
         """All three stages, as `neuv unwrap` runs them (train_faces 20000 by
-        default; keep_model=True turns refinement off unless refine is given).
+        default; keep_model=True gives the same atlas as without).
         Options: those of the three stages, train_faces, keep_model."""
         o = _options.unwrap(options, "Atlas.generate", _options.GENERATE)
         self._call(lib.neuv_atlas_generate, byref(o), progress=progress)
@@ -184,7 +184,11 @@ class Atlas:
         """Unwraps with a model instead of training (every stage replaced).
         model: a Model or a path. Options: threads, use_cache; surface
         models: check_inference, lscm_baseline; category models:
-        allow_overlaps, finetune, shared_layer, refine (None: the model's)."""
+        allow_overlaps, finetune, shared_layer, refine, resolution, padding
+        (None: the model's), keep_model (with finetune: take_model() then
+        gives a surface model of this shape with the fine-tuned networks).
+        An option that does not apply to the model's kind raises
+        neuv.Error."""
         o = _options.apply(options, "Atlas.apply_model")
         owned = None
         if not isinstance(model, Model):
@@ -196,7 +200,8 @@ class Atlas:
                 owned.close()
 
     def take_model(self):
-        """The surface model of the last generate(keep_model=True); once."""
+        """The surface model of the last generate(keep_model=True) or
+        apply_model(category, finetune=N, keep_model=True); once."""
         h = ctypes.c_void_p()
         self._call(lib.neuv_atlas_take_model, byref(h))
         return Model(h)

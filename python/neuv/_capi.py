@@ -58,7 +58,8 @@ class UnwrapOptions(Structure):
 class ApplyOptions(Structure):
     _fields_ = [("threads", c_int), ("use_cache", c_int), ("allow_overlaps", c_int),
                 ("check_inference", c_int), ("lscm_baseline", c_int), ("finetune", c_int),
-                ("shared_layer", c_int), ("refine", c_int)]
+                ("shared_layer", c_int), ("refine", c_int), ("resolution", c_int), ("padding", c_int),
+                ("keep_model", c_int)]
 
 
 class Metrics(Structure):

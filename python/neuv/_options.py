@@ -60,6 +60,15 @@ def _apply_refine(name, value):
     return -1 if value is None else _integer(name, value, -1, 1000000)
 
 
+# Applying a model, None (the default) keeps the model's packing.
+def _apply_resolution(name, value):
+    return 0 if value is None else _integer(name, value)
+
+
+def _apply_padding(name, value):
+    return -1 if value is None else _integer(name, value)
+
+
 def _train_faces(name, value):
     value = _integer(name, value, 0)
     if 0 < value < 500:
@@ -98,7 +107,7 @@ PACK_UVS = PACK + ("keep_scale",)
 UNWRAP = tuple(dict.fromkeys(CHART + PARAM + PACK + ("train_faces",)))
 GENERATE = UNWRAP + ("keep_model",)
 APPLY = ("threads", "use_cache", "allow_overlaps", "check_inference", "lscm_baseline", "finetune",
-         "shared_layer", "refine")
+         "shared_layer", "refine", "resolution", "padding", "keep_model")
 TRAIN = ("preset", "charts", "max_distortion", "iters", "patch_iters", "refine", "seed", "threads",
          "resolution", "padding", "use_cache")
 
@@ -145,15 +154,14 @@ def make(kind, options, allowed, where, converters=None):
 
 def unwrap(options, where, allowed=UNWRAP):
     """neuv_unwrap_options as `neuv unwrap` sets them: train_faces defaults to
-    the CLI's 20000, and keeping a model turns refinement off unless refine is
-    given (the refinement is tied to this mesh's triangles)."""
+    the CLI's 20000 (keep_model changes nothing else: a kept model records
+    the refinement and carries it over when applied)."""
     o = make(_capi.UnwrapOptions, options, allowed, where)
     if "train_faces" not in options:
         o.train_faces = DEFAULT_TRAIN_FACES
-    if options.get("keep_model") and "refine" not in options:
-        o.refine = 0
     return o
 
 
 def apply(options, where):
-    return make(_capi.ApplyOptions, options, APPLY, where, {"refine": _apply_refine})
+    return make(_capi.ApplyOptions, options, APPLY, where,
+                {"refine": _apply_refine, "resolution": _apply_resolution, "padding": _apply_padding})

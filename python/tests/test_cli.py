@@ -123,3 +123,24 @@ def test_category_model_from_python_applied_by_cli(cli, tmp_path):
     vmapping, indices, uvs = neuv.unwrap(V, F, model=tmp_path / "category.neuv", shared_layer=True,
                                          use_cache=False, threads=1)
     assert_same_atlas(tmp_path / "new-uv.obj", V, vmapping, indices, uvs)
+
+    # Fine-tuned with keep_model (the CLI's --finetune N --save-model): the
+    # same atlas, and a surface model of this shape that reproduces it.
+    with neuv.Atlas() as atlas:
+        atlas.add_mesh(V, F)
+        atlas.apply_model(model, finetune=3, keep_model=True, resolution=256, use_cache=False, threads=1)
+        tuned = atlas.take_model()
+        fine = atlas.get_output(0)[2].copy()
+        assert atlas.report["pack"]["resolution"] == 256
+    assert not tuned.is_category
+    run(cli, "unwrap", tmp_path / "new.obj", "--model", tmp_path / "category.neuv", "--finetune", "3",
+        "--resolution", "256", "--save-model", tmp_path / "tuned.neuv", "-o", tmp_path / "tuned-uv.obj",
+        "--no-cache", "--threads", "1", "--quiet")
+    assert not neuv.Model.load(tmp_path / "tuned.neuv").is_category
+    vmapping, indices, uvs = neuv.unwrap(V, F, model=tmp_path / "tuned.neuv", use_cache=False, threads=1)
+    np.testing.assert_allclose(uvs, fine, atol=1e-9)
+    # What does not apply to the model's kind raises, as the CLI refuses it.
+    with pytest.raises(neuv.Error, match="resolution"):
+        neuv.unwrap(V, F, model=tuned, resolution=512)
+    with pytest.raises(neuv.Error, match="keep_model"):
+        neuv.unwrap(V, F, model=model, keep_model=True)

@@ -303,10 +303,11 @@ neuv_status neuv_atlas_generate(neuv_atlas *a, const neuv_unwrap_options *o)
     return NEUV_OK;
 }
 
-neuv_status api_atlas_adopt(neuv_atlas *a, struct neuv_unwrap_result *r)
+neuv_status api_atlas_adopt(neuv_atlas *a, struct neuv_unwrap_result *r, struct unwrap_model *model)
 {
     discard_from(a, 1);
     a->result = r;
+    a->model = model;
     a->opts = r->opts;
     a->stage = 3;
     return NEUV_OK;
@@ -543,7 +544,8 @@ neuv_status api_atlas_take_model(neuv_atlas *a, unwrap_model **out)
     *out = NULL;
     if (!a) return error_set(NEUV_ERR_INPUT, "no atlas");
     if (!a->model)
-        return error_set(NEUV_ERR_INPUT, "the atlas kept no model: generate with keep_model = 1 (once per model)");
+        return error_set(NEUV_ERR_INPUT, "the atlas kept no model: generate with keep_model = 1, or apply a category "
+                                         "model with finetune and keep_model = 1 (once per model)");
     *out = a->model;
     a->model = NULL;
     return NEUV_OK;

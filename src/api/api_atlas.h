@@ -11,9 +11,10 @@ struct unwrap_model;
 const neuv_mesh *api_atlas_input(const neuv_atlas *a);
 const neuv_callbacks *api_atlas_callbacks(const neuv_atlas *a);
 /* Makes r (owned from now on) the atlas's packed result, discarding every
- * stage; no stage can run again from it. */
-neuv_status api_atlas_adopt(neuv_atlas *a, struct neuv_unwrap_result *r);
-/* Hands over the model kept by generate with keep_model. */
+ * stage; no stage can run again from it. model (owned from now on, may be
+ * NULL): the model neuv_atlas_take_model hands over. */
+neuv_status api_atlas_adopt(neuv_atlas *a, struct neuv_unwrap_result *r, struct unwrap_model *model);
+/* Hands over the model kept by generate or apply with keep_model. */
 neuv_status api_atlas_take_model(neuv_atlas *a, struct unwrap_model **out);
 
 #endif

@@ -60,22 +60,41 @@ neuv_status neuv_atlas_take_model(neuv_atlas *a, neuv_model **out)
     return s == NEUV_OK ? wrap(md, out) : s;
 }
 
-/* Refuses the options that do not apply to the model's kind. */
+/* Refuses the options that do not apply to the model's kind, and those out
+ * of range: none is ignored. The messages name the options as the struct
+ * does (the command line maps them to its flags). */
 static neuv_status check_apply_options(const unwrap_model *md, const neuv_apply_options *o)
 {
-    if (md->category) {
-        if (o->lscm_baseline) return error_set(NEUV_ERR_INPUT, "lscm_baseline needs a surface model, not a category model");
-        if (o->check_inference)
-            return error_set(NEUV_ERR_INPUT, "check_inference needs a surface model, not a category model");
-        if (o->shared_layer && o->finetune > 0)
-            return error_set(NEUV_ERR_INPUT, "shared_layer is for inference; finetune trains the networks");
-        if (o->finetune < 0 || o->finetune > 1000000) return error_set(NEUV_ERR_INPUT, "finetune must be in 0..1000000");
-        if (o->refine < -1 || o->refine > 1000000) return error_set(NEUV_ERR_INPUT, "refine must be -1, 0 or a step count");
+    if (!md->category) {
+        const char *given = o->finetune > 0 ? "finetune" : o->refine >= 0 ? "refine" : o->shared_layer ? "shared_layer"
+                            : o->allow_overlaps ? "allow_overlaps" : NULL;
+        if (given)
+            return error_set(NEUV_ERR_INPUT, "%s applies to category models: a surface model is applied by inference "
+                             "only and keeps its source's maps", given);
+        if (o->resolution != 0 || o->padding != -1)
+            return error_set(NEUV_ERR_INPUT, "%s applies to category models: a surface model keeps its source's layout "
+                             "(%d px square, %d px gutter)", o->resolution != 0 ? "resolution" : "padding",
+                             md->resolution, md->padding);
+        if (o->keep_model)
+            return error_set(NEUV_ERR_INPUT, "keep_model applies to a category model with finetune: a surface model is "
+                             "applied, not trained, so it would be the same model again");
         return NEUV_OK;
     }
-    if (o->finetune > 0 || o->refine >= 0 || o->shared_layer || o->allow_overlaps)
-        return error_set(NEUV_ERR_INPUT, "a surface model is applied by inference only: finetune, refine, shared_layer "
-                                         "and allow_overlaps apply to category models");
+    if (o->lscm_baseline) return error_set(NEUV_ERR_INPUT, "lscm_baseline needs a surface model, not a category model");
+    if (o->check_inference)
+        return error_set(NEUV_ERR_INPUT, "check_inference needs a surface model, not a category model");
+    if (o->finetune < 0 || o->finetune > 1000000) return error_set(NEUV_ERR_INPUT, "finetune must be in 0..1000000");
+    if (o->shared_layer && o->finetune > 0)
+        return error_set(NEUV_ERR_INPUT, "shared_layer is for inference; finetune trains the networks");
+    if (o->keep_model && o->finetune <= 0)
+        return error_set(NEUV_ERR_INPUT, "keep_model with a category model needs finetune > 0: inference trains no "
+                         "networks of this shape's to keep");
+    if (o->refine < -1 || o->refine > 1000000) return error_set(NEUV_ERR_INPUT, "refine must be -1, 0 or a step count");
+    if (o->resolution != 0 && (o->resolution < 64 || o->resolution > 16384))
+        return error_set(NEUV_ERR_INPUT, "resolution must be in 64..16384");
+    int resolution = o->resolution != 0 ? o->resolution : md->resolution;
+    if (o->padding != -1 && (o->padding < 0 || o->padding > resolution / 8))
+        return error_set(NEUV_ERR_INPUT, "padding must be in 0..resolution/8 (%d)", resolution / 8);
     return NEUV_OK;
 }
 
@@ -92,25 +111,33 @@ neuv_status neuv_atlas_apply_model(neuv_atlas *a, const neuv_model *m, const neu
     log_scope scope;
     log_scope_open(&scope, api_atlas_callbacks(a));
     struct neuv_unwrap_result *r = NULL;
+    unwrap_model *kept = NULL;
     if (m->model->category) {
         neuv_unwrap_options u;
         neuv_unwrap_options_init(&u);
         u.threads = o->threads;
         u.use_cache = o->use_cache;
         u.allow_overlaps = o->allow_overlaps;
-        /* The refinement is the model's unless the options set it: on a
-         * shallow copy, so that the caller's model (which other threads may
-         * be applying) is only read. */
+        /* The refinement and the packing are the model's unless the options
+         * set them: on a shallow copy, so that the caller's model (which
+         * other threads may be applying) is only read. */
         unwrap_model settings = *m->model;
         if (o->refine >= 0) settings.refine = o->refine;
-        s = unwrap_with_category(mesh, &settings, &u, o->finetune, o->shared_layer, &r);
+        if (o->resolution != 0) settings.resolution = o->resolution;
+        if (o->padding != -1) settings.padding = o->padding;
+        s = unwrap_with_category(mesh, &settings, &u, o->finetune, o->shared_layer, o->keep_model, &r);
+        /* The fine-tuned networks move into a surface model of this shape. */
+        if (s == NEUV_OK && o->keep_model) {
+            s = unwrap_model_from_result(r, &kept);
+            if (s != NEUV_OK) { neuv_unwrap_result_free(r); r = NULL; }
+        }
     } else {
         unwrap_apply_options ao = {o->threads, o->use_cache, o->check_inference, 0, o->lscm_baseline};
         s = unwrap_apply(mesh, m->model, &ao, &r);
     }
     log_scope_close(&scope);
     if (s != NEUV_OK) return s;
-    return api_atlas_adopt(a, r);
+    return api_atlas_adopt(a, r, kept);
 }
 
 neuv_status neuv_train_category(const neuv_mesh *const *meshes, int n, const neuv_unwrap_options *o, int patch_iters,

@@ -47,6 +47,7 @@ void neuv_apply_options_init(neuv_apply_options *o)
     memset(o, 0, sizeof *o);
     o->use_cache = 1;
     o->refine = -1;
+    o->padding = -1;
 }
 
 void api_options_set_charts(neuv_unwrap_options *u, const neuv_chart_options *o)

@@ -18,7 +18,7 @@ int cmd_train(int argc, char **argv)
     neuv_unwrap_options o;
     neuv_unwrap_options_init(&o);
     const char *out = NULL, *charts = NULL, *preset = NULL, *report = NULL;
-    int seed = -1, refine = -1, patch_iters = 0, bad = 0, n = 0;
+    int seed = -1, refine = -1, patch_iters = 0, bad = 0, n = 0, max_distortion_given = 0;
     const char **inputs = calloc((size_t)argc, sizeof *inputs);
     if (!inputs) return cli_error(NULL, "out of memory");
     for (int i = 1; i < argc && !bad; i++) {
@@ -27,7 +27,7 @@ int cmd_train(int argc, char **argv)
         if (cli_arg_str(argc, argv, &i, "--charts", &charts, &bad)) continue;
         if (cli_arg_str(argc, argv, &i, "--preset", &preset, &bad)) continue;
         if (cli_arg_str(argc, argv, &i, "--report", &report, &bad)) continue;
-        if (cli_arg_double(argc, argv, &i, "--max-distortion", &o.max_distortion, &bad)) continue;
+        if (cli_arg_double(argc, argv, &i, "--max-distortion", &o.max_distortion, &bad)) { max_distortion_given = 1; continue; }
         if (cli_arg_int(argc, argv, &i, "--iters", &o.iters, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--patch-iters", &patch_iters, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--refine", &refine, &bad)) continue;
@@ -44,6 +44,8 @@ int cmd_train(int argc, char **argv)
     if (!rc && preset) rc = cli_parse_preset(preset, &o.preset);
     if (!rc && charts) rc = cli_parse_charts(charts, &o.charts);
     if (!rc && o.max_distortion < 1.0) rc = cli_error(NULL, "--max-distortion must be at least 1");
+    if (!rc && max_distortion_given && o.charts > 0)
+        rc = cli_error(NULL, "--max-distortion applies to --charts auto: --charts K fixes the chart count");
     if (!rc && o.iters < 0) rc = cli_error(NULL, "--iters must be positive");
     if (!rc && (patch_iters < 0 || patch_iters > 10000000)) rc = cli_error(NULL, "--patch-iters must be positive");
     if (!rc && (refine < -1 || refine > 1000000))

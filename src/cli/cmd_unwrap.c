@@ -51,6 +51,8 @@ int cmd_unwrap(int argc, char **argv)
     unwrap_job job = {0};
     const char *in = NULL, *method = NULL, *charts = NULL, *preset = NULL, *color = NULL;
     int seed = -1, bad = 0, finetune = 0, refine = -1;
+    /* The options a model cannot take, when given (their values may be the defaults). */
+    int max_distortion_given = 0, iters_given = 0, resolution_given = 0, padding_given = 0, train_faces_given = 0;
     job.train_faces = DEFAULT_TRAIN_FACES;
     for (int i = 1; i < argc && !bad; i++) {
         if (cli_arg_global(argc, argv, &i, &bad)) continue;
@@ -61,16 +63,16 @@ int cmd_unwrap(int argc, char **argv)
         if (cli_arg_str(argc, argv, &i, "--method", &method, &bad)) continue;
         if (cli_arg_str(argc, argv, &i, "--charts", &charts, &bad)) continue;
         if (cli_arg_str(argc, argv, &i, "--preset", &preset, &bad)) continue;
-        if (cli_arg_double(argc, argv, &i, "--max-distortion", &o.max_distortion, &bad)) continue;
-        if (cli_arg_int(argc, argv, &i, "--iters", &o.iters, &bad)) continue;
+        if (cli_arg_double(argc, argv, &i, "--max-distortion", &o.max_distortion, &bad)) { max_distortion_given = 1; continue; }
+        if (cli_arg_int(argc, argv, &i, "--iters", &o.iters, &bad)) { iters_given = 1; continue; }
         if (cli_arg_int(argc, argv, &i, "--refine", &refine, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--seed", &seed, &bad)) continue;
-        if (cli_arg_int(argc, argv, &i, "--resolution", &o.resolution, &bad)) continue;
-        if (cli_arg_int(argc, argv, &i, "--padding", &o.padding, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--resolution", &o.resolution, &bad)) { resolution_given = 1; continue; }
+        if (cli_arg_int(argc, argv, &i, "--padding", &o.padding, &bad)) { padding_given = 1; continue; }
         if (cli_arg_str(argc, argv, &i, "--save-model", &job.save_model, &bad)) continue;
         if (cli_arg_str(argc, argv, &i, "--model", &job.model, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--finetune", &finetune, &bad)) continue;
-        if (cli_arg_int(argc, argv, &i, "--train-faces", &job.train_faces, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--train-faces", &job.train_faces, &bad)) { train_faces_given = 1; continue; }
         if (!strcmp(argv[i], "--check-inference")) { job.check_inference = 1; continue; }
         if (!strcmp(argv[i], "--lscm-baseline")) { job.lscm_baseline = 1; continue; }
         if (!strcmp(argv[i], "--shared-layer")) { job.shared_layer = 1; continue; }
@@ -94,12 +96,13 @@ int cmd_unwrap(int argc, char **argv)
     if (o.max_distortion < 1.0) return cli_error(NULL, "--max-distortion must be at least 1");
     if (o.iters < 0) return cli_error(NULL, "--iters must be positive");
     if (refine < -1 || refine > 1000000) return cli_error(NULL, "--refine must be 0 (off) or a step count up to 1000000");
+    if (o.resolution < 64 || o.resolution > 16384) return cli_error(NULL, "--resolution must be in 64..16384");
+    if (o.padding < 0 || (!job.model && o.padding > o.resolution / 8))
+        return cli_error(NULL, "--padding must be in 0..resolution/8 (%d)", o.resolution / 8);
+    /* A saved model records the refinement and carries it over when it is
+     * applied (docs/transfer.md), so --save-model leaves it on: the atlas is
+     * the same with and without --save-model. */
     if (refine >= 0) o.refine = refine;
-    /* A saved model keeps the networks' map, which is the same on every
-     * triangulation; the vertex refinement is tied to this mesh's triangles
-     * (it moved transferred UVs ~0.006 of the atlas side in cli_model), so
-     * it is off unless asked for. */
-    else if (job.save_model) o.refine = 0;
     if (seed >= 0) o.seed = (unsigned long long)seed;
     else if (seed != -1) return cli_error(NULL, "--seed must be non-negative");
     o.threads = cli_opts.threads;
@@ -112,10 +115,35 @@ int cmd_unwrap(int argc, char **argv)
     if (!job.model && job.check_inference) return cli_error(NULL, "--check-inference needs --model");
     if (!job.model && job.lscm_baseline) return cli_error(NULL, "--lscm-baseline needs --model");
     if (!job.model && job.shared_layer) return cli_error(NULL, "--shared-layer needs --model");
-    if (job.model && (method || preset || charts || o.iters || seed >= 0))
-        return cli_error(job.model, "--model applies a saved model: --method, --preset, --charts, --iters and --seed "
-                                    "come from the model");
-    job.refine = job.model ? refine : -1;
+    if (color && !job.preview) return cli_error(NULL, "--preview-color needs --preview (it colours the pictures)");
+    /* Options that would change nothing are refused, never ignored. */
+    if (!job.model && max_distortion_given && o.charts > 0)
+        return cli_error(NULL, "--max-distortion applies to --charts auto: --charts K fixes the chart count");
+    if (!job.model && refine >= 0 && o.method != NEUV_METHOD_NEURAL)
+        return cli_error(NULL, "--refine applies to the networks' map (--method neural): %s has nothing to refine",
+                         method);
+    if (job.model) {
+        /* The library takes none of these with a model (neuv_apply_options
+         * has no field for them); the rest go through and the library
+         * refuses what does not apply to the model's kind. */
+        const char *refused = method ? "--method cannot be used with --model: the model's method is applied"
+            : preset ? "--preset cannot be used with --model: the model's networks are applied"
+            : charts ? "--charts cannot be used with --model: the charts come from the model"
+            : max_distortion_given ? "--max-distortion cannot be used with --model: the charts come from the model "
+                                     "(a category model's threshold is neuv train --max-distortion)"
+            : iters_given ? "--iters cannot be used with --model: the model is applied, not trained (a category "
+                            "model trains --finetune N steps)"
+            : seed >= 0 ? "--seed cannot be used with --model: the model's seed is used"
+            : train_faces_given ? "--train-faces cannot be used with --model: nothing trains on a simplified copy "
+                                  "(--finetune trains on the mesh itself)"
+            : NULL;
+        if (refused) return cli_error(job.model, "%s", refused);
+        job.refine = refine;
+        job.resolution = resolution_given ? o.resolution : 0;
+        job.padding = padding_given ? o.padding : -1;
+    } else {
+        job.refine = -1;
+    }
     if (color && parse_preview_color(color, &job.preview_color)) return 2;
 
     char *owned_output = NULL;

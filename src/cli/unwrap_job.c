@@ -1,26 +1,42 @@
 #include "cli/unwrap_job.h"
 
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "cli/cli.h"
 
-/* Refuses the flags that do not apply to the model's kind, in the CLI's
- * words (the library refuses them too, in its own). */
-static const char *model_flags_refused(const neuv_model *model, const unwrap_job *job)
+/* The library names the options of neuv_apply_options as the struct does;
+ * its one-line message with each name as the flag the user typed. */
+static void apply_error_in_flags(const char *msg, char *out, size_t n)
 {
-    if (neuv_model_is_category(model)) {
-        if (job->lscm_baseline) return "--lscm-baseline needs a surface model, not a category model";
-        if (job->check_inference) return "--check-inference needs a surface model, not a category model";
-        if (job->save_model)
-            return "--save-model with a category model would write that model again, not this shape's (nor "
-                   "--finetune's weights); unwrap without --model to save a model of this shape";
-        return NULL;
+    static const char *const names[][2] = {
+        {"allow_overlaps", "--allow-overlaps"}, {"check_inference", "--check-inference"},
+        {"lscm_baseline", "--lscm-baseline"},   {"shared_layer", "--shared-layer"},
+        {"keep_model", "--save-model"},         {"finetune", "--finetune"},
+        {"refine", "--refine"},                 {"resolution", "--resolution"},
+        {"padding", "--padding"},
+    };
+    size_t used = 0;
+    const char *p = msg;
+    while (*p && used + 1 < n) {
+        const char *flag = NULL;
+        size_t len = 0;
+        int starts = p == msg || !(isalnum((unsigned char)p[-1]) || strchr("_.-/", p[-1]));
+        for (size_t k = 0; starts && !flag && k < sizeof names / sizeof names[0]; k++) {
+            len = strlen(names[k][0]);
+            if (!strncmp(p, names[k][0], len) && !isalnum((unsigned char)p[len]) && p[len] != '_') flag = names[k][1];
+        }
+        if (flag) {
+            int w = snprintf(out + used, n - used, "%s", flag);
+            if (w < 0 || (size_t)w >= n - used) break;
+            used += (size_t)w;
+            p += len;
+        } else {
+            out[used++] = *p++;
+        }
     }
-    if (job->finetune > 0 || job->refine >= 0 || job->shared_layer)
-        return "a surface model is applied by inference only: --finetune, --refine and --shared-layer apply to "
-               "category models (neuv train)";
-    return NULL;
+    out[used] = '\0';
 }
 
 static int apply_model(neuv_atlas *atlas, const neuv_unwrap_options *opts, const unwrap_job *job)
@@ -28,32 +44,37 @@ static int apply_model(neuv_atlas *atlas, const neuv_unwrap_options *opts, const
     neuv_model *model = NULL;
     neuv_status s = neuv_model_load(job->model, &model);
     if (s != NEUV_OK) return cli_fail(job->model, s);
-    const char *refused = model_flags_refused(model, job);
-    if (refused) { neuv_model_free(model); return cli_error(job->model, "%s", refused); }
-    if (neuv_model_is_category(model) && job->shared_layer && job->finetune > 0) {
-        neuv_model_free(model);
-        return cli_error(job->input_name, "--shared-layer is for inference; --finetune trains the networks");
-    }
+    /* Every option goes through; the library refuses what does not apply
+     * to the model's kind (neuv_atlas_apply_model), so that the command
+     * line, C and Python follow one rule. */
     neuv_apply_options ao;
     neuv_apply_options_init(&ao);
     ao.threads = opts->threads;
     ao.use_cache = opts->use_cache;
+    ao.allow_overlaps = opts->allow_overlaps;
     ao.check_inference = job->check_inference;
     ao.lscm_baseline = job->lscm_baseline;
-    if (neuv_model_is_category(model)) {
-        ao.allow_overlaps = opts->allow_overlaps;
-        ao.finetune = job->finetune;
-        ao.shared_layer = job->shared_layer;
-        ao.refine = job->refine;
-    }
+    ao.finetune = job->finetune;
+    ao.shared_layer = job->shared_layer;
+    ao.refine = job->refine;
+    ao.resolution = job->resolution;
+    ao.padding = job->padding;
+    ao.keep_model = job->save_model != NULL;
     s = neuv_atlas_apply_model(atlas, model, &ao);
-    const char *what = job->input_name;
-    if (s == NEUV_OK && job->save_model) {
-        s = neuv_model_save(model, job->save_model);
-        what = job->save_model;
-    }
     neuv_model_free(model);
-    return s == NEUV_OK ? 0 : cli_fail(what, s);
+    if (s == NEUV_ERR_INPUT) {
+        char msg[768];
+        apply_error_in_flags(neuv_last_error(), msg, sizeof msg);
+        return cli_error(job->model, "%s", msg);
+    }
+    if (s != NEUV_OK) return cli_fail(job->input_name, s);
+    if (!job->save_model) return 0;
+    /* A category model fine-tuned on this shape: a surface model of it. */
+    neuv_model *tuned = NULL;
+    s = neuv_atlas_take_model(atlas, &tuned);
+    if (s == NEUV_OK) s = neuv_model_save(tuned, job->save_model);
+    neuv_model_free(tuned);
+    return s == NEUV_OK ? 0 : cli_fail(job->save_model, s);
 }
 
 static int train(neuv_atlas *atlas, const neuv_unwrap_options *opts, const unwrap_job *job)

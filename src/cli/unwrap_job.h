@@ -19,7 +19,8 @@ typedef struct unwrap_job {
     int shared_layer;         /* --shared-layer (category model): no per-chart heads solved at inference */
     int lscm_baseline;        /* --lscm-baseline (with --model): the model's charts flattened by LSCM */
     int finetune;             /* --finetune N (with a category --model) */
-    int refine;               /* --refine N with a category --model; -1: the model's */
+    int refine;               /* --refine N with --model; -1: the model's */
+    int resolution, padding;  /* --resolution, --padding with --model; 0 and -1: the model's */
 } unwrap_job;
 
 /* Runs the pipeline (or applies job->model) and writes everything, the

@@ -719,12 +719,14 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
 }
 
 neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *category, const neuv_unwrap_options *opts,
-                                 int finetune, int shared_layer, neuv_unwrap_result **out)
+                                 int finetune, int shared_layer, int keep_model, neuv_unwrap_result **out)
 {
     *out = NULL;
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
     if (!category || !category->category || !category->patchnet || !category->param)
         return error_set(NEUV_ERR_INPUT, "not a category model");
+    if (keep_model && finetune <= 0)
+        return error_set(NEUV_ERR_INPUT, "keep_model needs finetune > 0: inference trains no networks of this shape's");
     struct neuv_unwrap_result *r = mem_calloc(1, sizeof *r);
     if (!r) return error_nomem("the result");
     neuv_unwrap_options_init(&r->opts);
@@ -746,7 +748,7 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
     r->model.category = 1;
     r->model.finetune = finetune;
     r->model.shared_layer = shared_layer;
-    unwrap_plan plan = {category, 0, finetune, NULL};
+    unwrap_plan plan = {category, keep_model, finetune, NULL};
     neuv_status s = unwrap_run_stages(r, mesh, &plan);
     if (s != NEUV_OK) { neuv_unwrap_result_free(r); return s; }
     r->model.network_charts = r->neural_charts;

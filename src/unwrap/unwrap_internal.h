@@ -226,9 +226,12 @@ neuv_status unwrap_train(const neuv_mesh *mesh, const neuv_unwrap_options *opts,
  * many training steps from the model's weights; then the same repair,
  * refinement, packing and metrics.
  * Preset, seed, refinement, resolution and padding come from the model;
- * threads, use_cache and allow_overlaps from opts (may be NULL). */
+ * threads, use_cache and allow_overlaps from opts (may be NULL).
+ * keep_model (with finetune > 0): the result keeps the fine-tuned networks
+ * and the charts' maps, for unwrap_model_from_result (a surface model of
+ * this shape); the atlas is the same as without. */
 neuv_status unwrap_with_category(const neuv_mesh *mesh, const struct unwrap_model *category,
-                                 const neuv_unwrap_options *opts, int finetune, int shared_layer,
+                                 const neuv_unwrap_options *opts, int finetune, int shared_layer, int keep_model,
                                  neuv_unwrap_result **out);
 
 #endif
