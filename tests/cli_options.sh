@@ -189,8 +189,8 @@ S_CHECK=$LAST
 RUN_ENV=()
 effect surface --lscm-baseline SA 'r["model"]["network_charts"] == 0 < ref["model"]["network_charts"] and not same' \
   --quiet --model "$S" --lscm-baseline
-# A surface model computes operators only for --check-inference (the report's
-# operators_cache_hit is always false there), so the cache is seen on disk.
+# A surface model computes operators only for --check-inference, each run
+# here on a fresh cache folder (a miss either way), so the cache is seen on disk.
 RUN_ENV=(XDG_CACHE_HOME="$TMP/cacheB")
 effect surface --no-cache "$S_CHECK" 'files("cacheB") == 0 < files("cacheA") and r["model"]["patchnet_label_agreement"] == ref["model"]["patchnet_label_agreement"]' \
   --quiet --model "$S" --check-inference --no-cache

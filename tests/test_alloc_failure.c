@@ -45,41 +45,10 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "failing_alloc.h"
 #include "mesh/shapes.h"
 #include "neuv/neuv.h"
 
-static atomic_long n_calls; /* alloc and realloc calls since arm() */
-static atomic_long n_live;  /* blocks allocated and not yet freed */
-static atomic_long fail_at; /* the call that fails; 0: none */
-
-static void *count_alloc(void *user, size_t size)
-{
-    (void)user;
-    if (atomic_fetch_add(&n_calls, 1) + 1 == atomic_load(&fail_at)) return NULL;
-    void *p = malloc(size);
-    if (p) atomic_fetch_add(&n_live, 1);
-    return p;
-}
-
-static void *count_realloc(void *user, void *ptr, size_t size)
-{
-    (void)user;
-    if (atomic_fetch_add(&n_calls, 1) + 1 == atomic_load(&fail_at)) return NULL;
-    return realloc(ptr, size);
-}
-
-static void count_free(void *user, void *ptr)
-{
-    (void)user;
-    atomic_fetch_sub(&n_live, 1);
-    free(ptr);
-}
-
-static void arm(long n)
-{
-    atomic_store(&n_calls, 0);
-    atomic_store(&fail_at, n);
-}
 
 static double now(void)
 {
@@ -376,8 +345,7 @@ static void report_under_failure(const neuv_atlas *r)
 
 int main(void)
 {
-    const neuv_allocator counting = {count_alloc, count_realloc, count_free, NULL};
-    neuv_set_allocator(&counting); /* before any other call, as the contract asks */
+    neuv_set_allocator(&failing_allocator); /* before any other call, as the contract asks */
 
     neuv_mesh *mesh = shape_icosphere(1, 1.0);
     CHECK(mesh != NULL);

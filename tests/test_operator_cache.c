@@ -24,6 +24,7 @@
  * over a damaged file return NEUV_ERR_NOMEM for every N, never a miss or a
  * result, and leak nothing. */
 #include "check.h"
+#include "failing_alloc.h"
 
 #include <dirent.h>
 #include <stdatomic.h>
@@ -36,39 +37,6 @@
 #include "mesh/shapes.h"
 
 enum { HEADER_BYTES = 72, OFF_VERSION = 8, OFF_BYTE_ORDER = 12, OFF_KEY = 16 };
-
-/* ---- an allocator that fails the Nth allocation ------------------------ */
-
-static atomic_long n_calls, n_live, fail_at;
-
-static void *count_alloc(void *user, size_t size)
-{
-    (void)user;
-    if (atomic_fetch_add(&n_calls, 1) + 1 == atomic_load(&fail_at)) return NULL;
-    void *p = malloc(size);
-    if (p) atomic_fetch_add(&n_live, 1);
-    return p;
-}
-
-static void *count_realloc(void *user, void *ptr, size_t size)
-{
-    (void)user;
-    if (atomic_fetch_add(&n_calls, 1) + 1 == atomic_load(&fail_at)) return NULL;
-    return realloc(ptr, size);
-}
-
-static void count_free(void *user, void *ptr)
-{
-    (void)user;
-    atomic_fetch_sub(&n_live, 1);
-    free(ptr);
-}
-
-static void arm(long n)
-{
-    atomic_store(&n_calls, 0);
-    atomic_store(&fail_at, n);
-}
 
 /* ---- comparing operators ----------------------------------------------- */
 
@@ -353,8 +321,7 @@ int main(void)
 {
     /* The counting allocator first, as neuv_set_allocator asks; it never
      * fails until armed. */
-    const neuv_allocator counting = {count_alloc, count_realloc, count_free, NULL};
-    neuv_set_allocator(&counting);
+    neuv_set_allocator(&failing_allocator);
 
     /* A private cache folder (nested, not yet existing: the cache creates it). */
     char xdg[4096];

@@ -867,8 +867,7 @@ static neuv_status check_inference(struct neuv_unwrap_result *r, const unwrap_mo
     operators ops;
     memset(&ops, 0, sizeof ops);
     operators_params op = operators_default_params();
-    int hit = 0;
-    neuv_status s = operators_get(r->mesh, &op, use_cache, &ops, NULL, &hit);
+    neuv_status s = operators_get(r->mesh, &op, use_cache, &ops, NULL, &r->cache_hit);
     if (s) return s;
     int *label = mem_alloc(sizeof(int) * (size_t)r->mesh->nf);
     if (!label) { operators_free(&ops); return error_nomem("labels"); }
