@@ -426,6 +426,36 @@ neuv_status unwrap_clean_copy(const neuv_mesh *in, neuv_mesh **out, mesh_clean_r
     return NEUV_OK;
 }
 
+/* Multiplies every position by 2^e: exact (no rounding) for sizes far from
+ * the ends of the double range. */
+static void scale_positions(neuv_mesh *m, int e)
+{
+    for (size_t i = 0; i < 3 * (size_t)m->nv; i++) m->pos[i] = ldexp(m->pos[i], e);
+}
+
+/* The power of two that brings the diagonal of m's bounding box into [1, 2),
+ * or 0 when that diagonal is already within 2^-16 .. 2^24 (ordinary meshes
+ * are left as they are, bit for bit). */
+static int extreme_scale_exponent(const neuv_mesh *m)
+{
+    if (m->nv == 0) return 0;
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; k++) lo[k] = hi[k] = m->pos[k];
+    for (int v = 1; v < m->nv; v++)
+        for (int k = 0; k < 3; k++) {
+            double x = m->pos[3 * (size_t)v + k];
+            if (x < lo[k]) lo[k] = x;
+            if (x > hi[k]) hi[k] = x;
+        }
+    /* Each extent halved before squaring, so that 1e300 does not overflow. */
+    double h = 0;
+    for (int k = 0; k < 3; k++) h += (0.5 * hi[k] - 0.5 * lo[k]) * (0.5 * hi[k] - 0.5 * lo[k]);
+    double d = 2.0 * sqrt(h);
+    if (!(d > 0) || !isfinite(d)) return 0;
+    if (d >= ldexp(1.0, -16) && d <= ldexp(1.0, 24)) return 0;
+    return -ilogb(d);
+}
+
 /* The end of every stage: a cancel asked for during it, or a repair note
  * that did not fit in memory, stops the run. */
 static neuv_status stage_end(const struct neuv_unwrap_result *r, neuv_status s)
@@ -508,6 +538,10 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
     r->input_vertices = in->nv;
     r->input_faces = in->nf;
     neuv_status s = unwrap_clean_copy(in, &r->mesh, &r->clean);
+    if (s == NEUV_OK) {
+        r->pos_exp = extreme_scale_exponent(r->mesh);
+        if (r->pos_exp) scale_positions(r->mesh, r->pos_exp);
+    }
     unwrap_stage_time(r, STAGE_CLEAN, t);
     if ((s = stage_end(r, s)) != NEUV_OK) return s;
     if (plan->apply) s = unwrap_apply_charts(r, plan->model, plan->apply);
@@ -626,6 +660,11 @@ neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r, const unwrap_plan *p
                                      r->seconds[STAGE_REPAIR] + r->seconds[STAGE_PACK] +
                                      (plan->apply ? 0 : r->seconds[STAGE_OPERATORS]);
 
+    /* The input's own size back (UVs are packed into [0,1]^2 and keep theirs). */
+    if (r->pos_exp) {
+        scale_positions(r->mesh, -r->pos_exp);
+        r->pos_exp = 0;
+    }
     /* The metrics of the mesh as `neuv eval` will read it back (positions welded). */
     double t = now_seconds();
     s = unwrap_metrics(r->mesh, &r->metrics);

@@ -26,6 +26,11 @@ struct neuv_unwrap_result {
     neuv_unwrap_options opts;
     neuv_mesh *mesh;          /* cleaned mesh with packed per-corner UVs */
     int input_vertices, input_faces;
+    /* The cleaned mesh's positions were multiplied by 2^pos_exp (exact) so
+     * that its size is near 1 while the charts and maps are made: an extreme
+     * scale (1e30, 1e-30) overflows or underflows the float networks. 0 for
+     * ordinary sizes; undone before the metrics (unwrap_stage_pack). */
+    int pos_exp;
     mesh_clean_report clean;
     int *face_chart;          /* #F */
     int n_charts;
