@@ -152,8 +152,28 @@ def candidates():
     return paths
 
 
+def libgomp_loaded():
+    """Whether this process has libgomp already (its wait policy is then fixed)."""
+    try:
+        with open("/proc/self/maps") as f:
+            return any("libgomp" in line for line in f)
+    except OSError:
+        return True
+
+
+def prefer_passive_openmp():
+    """libgomp reads OMP_WAIT_POLICY once, when it is loaded, and by default
+    its idle threads spin: on a busy machine they take the cores the working
+    threads need (bench/RESULTS.md, "OpenMP wait policy": spot on 2 threads,
+    274 s against 49 s with PASSIVE). When libneuv is what brings libgomp
+    in, the package sets PASSIVE first, unless the user chose a policy."""
+    if "OMP_WAIT_POLICY" not in os.environ and not libgomp_loaded():
+        os.environ["OMP_WAIT_POLICY"] = "PASSIVE"
+
+
 def load():
     """Opens the first library found and declares its functions."""
+    prefer_passive_openmp()
     tried = candidates()
     for path in tried:
         if os.path.exists(path):

@@ -538,7 +538,9 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
     r->input_vertices = in->nv;
     r->input_faces = in->nf;
     neuv_status s = unwrap_clean_copy(in, &r->mesh, &r->clean);
-    if (s == NEUV_OK) {
+    /* Not for a saved model, made or applied: its stored surface and chart
+     * frames are in the mesh's own units. */
+    if (s == NEUV_OK && !plan->apply && !plan->keep_model) {
         r->pos_exp = extreme_scale_exponent(r->mesh);
         if (r->pos_exp) scale_positions(r->mesh, r->pos_exp);
     }

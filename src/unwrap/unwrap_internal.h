@@ -29,7 +29,9 @@ struct neuv_unwrap_result {
     /* The cleaned mesh's positions were multiplied by 2^pos_exp (exact) so
      * that its size is near 1 while the charts and maps are made: an extreme
      * scale (1e30, 1e-30) overflows or underflows the float networks. 0 for
-     * ordinary sizes; undone before the metrics (unwrap_stage_pack). */
+     * ordinary sizes and for a saved model, made or applied (its surface and
+     * chart frames are stored in the mesh's units); undone before the metrics
+     * (unwrap_stage_pack). */
     int pos_exp;
     mesh_clean_report clean;
     int *face_chart;          /* #F */
