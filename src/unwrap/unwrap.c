@@ -440,13 +440,7 @@ static int extreme_scale_exponent(const neuv_mesh *m)
 {
     if (m->nv == 0) return 0;
     double lo[3], hi[3];
-    for (int k = 0; k < 3; k++) lo[k] = hi[k] = m->pos[k];
-    for (int v = 1; v < m->nv; v++)
-        for (int k = 0; k < 3; k++) {
-            double x = m->pos[3 * (size_t)v + k];
-            if (x < lo[k]) lo[k] = x;
-            if (x > hi[k]) hi[k] = x;
-        }
+    mesh_bounding_box(m, lo, hi);
     /* Each extent halved before squaring, so that 1e300 does not overflow. */
     double h = 0;
     for (int k = 0; k < 3; k++) h += (0.5 * hi[k] - 0.5 * lo[k]) * (0.5 * hi[k] - 0.5 * lo[k]);
