@@ -11,32 +11,12 @@
 #include "core/error.h"
 #include "core/json_writer.h"
 #include "core/mem.h"
+#include "io/base64.h"
 #include "io/byte_order.h"
 #include "io/mesh_io.h"
 #include "io/seam_split.h"
 
 enum { GL_FLOAT = 5126, GL_UNSIGNED_INT = 5125, GL_ARRAY_BUFFER = 34962, GL_ELEMENT_ARRAY_BUFFER = 34963 };
-
-static char *base64(const unsigned char *data, size_t n)
-{
-    static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    char *out = mem_alloc(4 * ((n + 2) / 3) + 1), *q = out;
-    if (!out) return NULL;
-    size_t i = 0;
-    for (; i + 2 < n; i += 3) {
-        uint32_t w = (uint32_t)data[i] << 16 | (uint32_t)data[i + 1] << 8 | data[i + 2];
-        *q++ = digits[w >> 18]; *q++ = digits[(w >> 12) & 63]; *q++ = digits[(w >> 6) & 63]; *q++ = digits[w & 63];
-    }
-    if (i < n) {
-        uint32_t w = (uint32_t)data[i] << 16 | (i + 1 < n ? (uint32_t)data[i + 1] << 8 : 0);
-        *q++ = digits[w >> 18];
-        *q++ = digits[(w >> 12) & 63];
-        *q++ = i + 1 < n ? digits[(w >> 6) & 63] : '=';
-        *q++ = '=';
-    }
-    *q = '\0';
-    return out;
-}
 
 static void buffer_view(json_writer *w, size_t offset, size_t length, int target)
 {
@@ -138,7 +118,7 @@ neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary)
     json_key(&w, "buffers"); json_begin_array(&w); json_begin_object(&w);
     json_key(&w, "byteLength"); json_int(&w, (long long)total);
     if (!binary) {
-        char *b64 = base64(buf, total);
+        char *b64 = base64_encode(buf, total);
         if (!b64) { mem_free(buf); json_free(&w); return error_nomem("the glTF buffer"); }
         static const char prefix[] = "data:application/octet-stream;base64,";
         char *uri = mem_alloc(sizeof prefix + strlen(b64));

@@ -57,13 +57,14 @@ static neuv_status read_all(FILE *fp, char **data, size_t *len)
     return NEUV_OK;
 }
 
-typedef enum mesh_format { FMT_UNKNOWN, FMT_OBJ, FMT_OFF, FMT_PLY, FMT_ASSIMP } mesh_format;
+typedef enum mesh_format { FMT_UNKNOWN, FMT_OBJ, FMT_OFF, FMT_PLY, FMT_GLTF, FMT_ASSIMP } mesh_format;
 
 static mesh_format input_format(const char *ext)
 {
     if (!strcmp(ext, ".obj")) return FMT_OBJ;
     if (!strcmp(ext, ".off")) return FMT_OFF;
     if (!strcmp(ext, ".ply")) return FMT_PLY;
+    if (!strcmp(ext, ".gltf") || !strcmp(ext, ".glb")) return FMT_GLTF;
     if (ext[0] && io_assimp_supports(ext)) return FMT_ASSIMP; /* .stl, .gltf, .glb, .fbx, ... */
     return FMT_UNKNOWN;
 }
@@ -97,6 +98,19 @@ static neuv_status mesh_load(const char *path, neuv_mesh **out)
         s = error_set(NEUV_ERR_INPUT, "empty file");
     } else if (fmt == FMT_PLY) {
         s = io_read_ply(data, len, out);
+    } else if (fmt == FMT_GLTF) {
+        /* Buffers named by URI are relative to the file's folder. */
+        const char *slash = strrchr(path, '/');
+        size_t dl = slash ? (size_t)(slash - path) + 1 : 0;
+        char *dir = mem_alloc(dl + 1);
+        if (!dir) {
+            s = error_nomem("the file's folder");
+        } else {
+            memcpy(dir, path, dl);
+            dir[dl] = '\0';
+            s = io_read_gltf(data, len, dir, out);
+            mem_free(dir);
+        }
     } else if (memchr(data, '\0', len)) {
         /* A text reader would stop at the NUL and silently drop the rest. */
         s = error_set(NEUV_ERR_INPUT, "binary data in a text %s file", fmt == FMT_OBJ ? "OBJ" : "OFF");

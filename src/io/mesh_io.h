@@ -23,7 +23,11 @@ neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out);
 neuv_status io_read_off(const char *text, size_t len, neuv_mesh **out);
 /* PLY: ascii, binary_little_endian, binary_big_endian. */
 neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out);
-/* Any format Assimp reads (STL, glTF/GLB, FBX, ...), meshes concatenated with
+/* glTF 2.0, as .gltf (JSON) or .glb (binary), with neuv's own reader
+ * (gltf_read.c says what it reads and refuses). `dir`: the folder that
+ * buffer URIs naming files are relative to; NULL refuses such buffers. */
+neuv_status io_read_gltf(const char *data, size_t len, const char *dir, neuv_mesh **out);
+/* Any other format Assimp reads (STL, FBX, ...), meshes concatenated with
  * their node transforms applied. */
 neuv_status io_read_assimp(const char *path, neuv_mesh **out);
 /* 1 when Assimp can read files with this extension (".stl"). */
