@@ -1,5 +1,6 @@
-/* Reader for the formats neuv leaves to Assimp: STL (ascii and binary),
- * glTF/GLB and whatever else aiIsExtensionSupported accepts. Only
+/* Reader for the formats neuv leaves to Assimp: STL (ascii and binary)
+ * and whatever else aiIsExtensionSupported accepts (glTF and GLB go to
+ * gltf_read.c, never here). Only
  * triangulation is asked of Assimp (no vertex joining), so the vertices are
  * those the importer produced; an STL arrives as triangle soup, which
  * mesh/clean.h welds. Every mesh instance in the node tree is added with its

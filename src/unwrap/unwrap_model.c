@@ -613,21 +613,36 @@ static neuv_status load_from(const nn_checkpoint *c, unwrap_model *m)
     return NEUV_OK;
 }
 
+/* The checkpoint's version, then the model from its configuration and
+ * tensors; the checkpoint is freed either way. */
+static neuv_status model_from_checkpoint(nn_checkpoint *c, unwrap_model **out)
+{
+    if (c->version != NN_CHECKPOINT_VERSION) {
+        unsigned v = c->version;
+        nn_checkpoint_free(c);
+        return error_set(NEUV_ERR_INPUT, "checkpoint version %u is not supported", v);
+    }
+    unwrap_model *m = mem_calloc(1, sizeof *m);
+    if (!m) { nn_checkpoint_free(c); return error_nomem("the model"); }
+    neuv_status s = load_from(c, m);
+    nn_checkpoint_free(c);
+    if (s) { unwrap_model_free(m); return s; }
+    *out = m;
+    return NEUV_OK;
+}
+
 neuv_status unwrap_model_load(const char *path, unwrap_model **out)
 {
     *out = NULL;
     nn_checkpoint c;
     neuv_status s = nn_checkpoint_load(path, &c);
-    if (s) return s;
-    if (c.version != NN_CHECKPOINT_VERSION) {
-        nn_checkpoint_free(&c);
-        return error_set(NEUV_ERR_INPUT, "checkpoint version %u is not supported", c.version);
-    }
-    unwrap_model *m = mem_calloc(1, sizeof *m);
-    if (!m) { nn_checkpoint_free(&c); return error_nomem("the model"); }
-    s = load_from(&c, m);
-    nn_checkpoint_free(&c);
-    if (s) { unwrap_model_free(m); return s; }
-    *out = m;
-    return NEUV_OK;
+    return s ? s : model_from_checkpoint(&c, out);
+}
+
+neuv_status unwrap_model_parse(const void *bytes, size_t len, unwrap_model **out)
+{
+    *out = NULL;
+    nn_checkpoint c;
+    neuv_status s = nn_checkpoint_parse(bytes, len, &c);
+    return s ? s : model_from_checkpoint(&c, out);
 }

@@ -81,6 +81,8 @@ neuv_status unwrap_model_save(const unwrap_model *model, const char *path);
  * charts, network ids). Any defect: NEUV_ERR_INPUT with a one-line message;
  * unreadable file: NEUV_ERR_IO. */
 neuv_status unwrap_model_load(const char *path, unwrap_model **out);
+/* The same on a model file's bytes in memory (the fuzzing entry point). */
+neuv_status unwrap_model_parse(const void *bytes, size_t len, unwrap_model **out);
 
 void unwrap_model_free(unwrap_model *model);
 
