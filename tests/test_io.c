@@ -500,6 +500,9 @@ static void test_bad_input(void)
                       NEUV_ERR_INPUT, "line 6: face references vertex 900, but there are 3 vertices");
     expect_load_error(write_text("rel.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\n"), NEUV_ERR_INPUT,
                       "line 3: relative vertex index -3 reaches before the first one");
+    /* Found by fuzzing: strtoll's LLONG_MIN, whose negation overflowed. */
+    expect_load_error(write_text("rel-huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -99999999999999999999999\n"),
+                      NEUV_ERR_INPUT, "line 4: relative vertex index -9223372036854775808 reaches before the first one");
     expect_load_error(write_text("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), NEUV_ERR_INPUT,
                       "line 4: vertex index 0 is not valid");
     expect_load_error(write_text("cloud.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"), NEUV_ERR_INPUT,

@@ -62,7 +62,9 @@ static neuv_status resolve(long long idx, int count, int line, const char *what,
     if (idx == 0)
         return error_set(NEUV_ERR_INPUT, "line %d: %s index 0 is not valid (OBJ counts from 1)", line, what);
     if (idx < 0) {
-        if (-idx > count)
+        /* Compared without negating idx: strtoll gives LLONG_MIN for a
+         * huge negative number, whose negation overflows. */
+        if (idx < -(long long)count)
             return error_set(NEUV_ERR_INPUT, "line %d: relative %s index %lld reaches before the first one",
                              line, what, idx);
         *out = (int)(count + idx);
