@@ -155,6 +155,13 @@ static void test_glb_and_scene(void)
     neuv_mesh *bad = (neuv_mesh *)1;
     CHECK_INT(neuv_mesh_load(write_file("cut.glb", g, total - 8), NULL, &bad), NEUV_ERR_INPUT);
     CHECK(bad == NULL && strstr(neuv_last_error(), "GLB header gives"));
+    /* Found by fuzzing: a header total below the header's own size made the
+     * chunk bound (total - 20) wrap around. */
+    uint32_t zero = 0;
+    memcpy(g + 8, &zero, 4);
+    bad = (neuv_mesh *)1;
+    CHECK_INT(neuv_mesh_load(write_file("total0.glb", g, total), NULL, &bad), NEUV_ERR_INPUT);
+    CHECK(bad == NULL && strstr(neuv_last_error(), "less than a header and a chunk"));
     free(g);
 }
 

@@ -467,6 +467,7 @@ neuv_status io_read_gltf(const char *data, size_t len, const char *dir, neuv_mes
         if (get_u32le(d + 4) != 2) return error_set(NEUV_ERR_INPUT, "glTF: GLB version %u (only 2 is read)", get_u32le(d + 4));
         size_t total = get_u32le(d + 8);
         if (total > len) return error_set(NEUV_ERR_INPUT, "glTF: GLB header gives %zu bytes, the file has %zu", total, len);
+        if (total < 20) return error_set(NEUV_ERR_INPUT, "glTF: GLB header gives %zu bytes, less than a header and a chunk", total);
         size_t clen = get_u32le(d + 12);
         if (get_u32le(d + 16) != 0x4E4F534Au) return error_set(NEUV_ERR_INPUT, "glTF: GLB's first chunk is not JSON");
         if (clen > total - 20) return error_set(NEUV_ERR_INPUT, "glTF: GLB's JSON chunk leaves the file");
