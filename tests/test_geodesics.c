@@ -393,11 +393,76 @@ static void test_components(void)
     mesh_free(empty);
 }
 
+/* pairs_from: with every vertex a source it gives exactly pairs_within's
+ * pairs (same order, same distances); with some sources, exactly the pairs
+ * of pairs_within that have a source at one end, each once. */
+static void test_pairs_from(void)
+{
+    neuv_mesh *m = shape_grid(20, 20, 1.0, 1.0, 0);
+    heat_geodesics *g = NULL;
+    CHECK_INT(heat_geodesics_create(m, 1.0, &g), NEUV_OK);
+    if (!g) { mesh_free(m); return; }
+    const double r = 0.2;
+    geodesic_pairs all = {0}, from_all = {0}, some = {0};
+    CHECK_INT(heat_geodesics_pairs_within(g, r, NULL, 0, &all), NEUV_OK);
+    int *every = malloc(sizeof(int) * (size_t)m->nv);
+    for (int v = 0; v < m->nv; v++) every[v] = v;
+    CHECK_INT(heat_geodesics_pairs_from(g, r, every, m->nv, &from_all), NEUV_OK);
+    CHECK_INT(from_all.n, all.n);
+    int same = from_all.n == all.n;
+    for (size_t k = 0; same && k < all.n; k++)
+        same = all.i[k] == from_all.i[k] && all.j[k] == from_all.j[k] && all.d[k] == from_all.d[k];
+    CHECK(same);
+    /* Every 7th vertex a source (two of them are neighbours of each other). */
+    int ns = 0;
+    unsigned char *src = calloc((size_t)m->nv, 1);
+    for (int v = 0; v < m->nv; v += 7) { every[ns++] = v; src[v] = 1; }
+    CHECK_INT(heat_geodesics_pairs_from(g, r, every, ns, &some), NEUV_OK);
+    unsigned char *found = calloc((size_t)m->nv * m->nv, 1);
+    int ordered = 1, touches = 1;
+    for (size_t k = 0; k < some.n; k++) {
+        ordered &= some.i[k] < some.j[k];
+        touches &= src[some.i[k]] || src[some.j[k]];
+        found[(size_t)some.i[k] * m->nv + some.j[k]]++;
+    }
+    CHECK(ordered);
+    CHECK(touches);
+    /* Against pairs_within: the same set, distances within the heat method's
+     * asymmetry (a pair found from its larger end reads that end's solve). */
+    size_t expected = 0;
+    int missing = 0, dup = 0;
+    double worst = 0;
+    for (size_t k = 0; k < all.n; k++) {
+        if (!src[all.i[k]] && !src[all.j[k]]) continue;
+        expected++;
+        unsigned char f = found[(size_t)all.i[k] * m->nv + all.j[k]];
+        missing += f == 0;
+        dup += f > 1;
+    }
+    for (size_t k = 0; k < some.n; k++) {
+        for (size_t q = 0; q < all.n; q++)
+            if (all.i[q] == some.i[k] && all.j[q] == some.j[k]) { worst = fmax(worst, fabs(all.d[q] - some.d[k])); break; }
+    }
+    CHECK_INT(dup, 0);
+    /* A pair near the radius may fall on either side of it from the other end. */
+    CHECK(missing <= (int)(expected / 50));
+    CHECK(some.n <= expected + expected / 50);
+    CHECK(some.n > 0 && worst < 0.3 * r); /* as test_pairs: 30% of the radius near the boundary */
+    CHECK_INT(heat_geodesics_pairs_from(g, r, (int[]){3, 3}, 2, &some), NEUV_ERR_INPUT);
+    printf("pairs_from: %zu pairs from all %d vertices (= pairs_within), %zu from %d sources (%zu expected, %d missing, "
+           "distance difference %.2g)\n", from_all.n, m->nv, some.n, ns, expected, missing, worst);
+    free(found); free(src); free(every);
+    geodesic_pairs_free(&all); geodesic_pairs_free(&from_all); geodesic_pairs_free(&some);
+    heat_geodesics_free(g);
+    mesh_free(m);
+}
+
 int main(void)
 {
     test_sphere();
     test_grid();
     test_pairs();
+    test_pairs_from();
     test_components();
     return check_report("test_geodesics");
 }

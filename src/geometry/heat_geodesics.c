@@ -486,6 +486,39 @@ neuv_status heat_geodesics_pairs_within(heat_geodesics *g, double radius, const 
     return s;
 }
 
+neuv_status heat_geodesics_pairs_from(heat_geodesics *g, double radius, const int *sources, int nsources,
+                                      geodesic_pairs *out)
+{
+    neuv_status s = check_vertices(g, sources, nsources);
+    if (s) return s;
+    if (!(radius > 0) || nsources <= 0) return NEUV_OK;
+    const size_t nv = (size_t)g->nv;
+    unsigned char *is_source = mem_calloc(nv, 1);
+    if (!is_source) return error_nomem("geodesic pair sources");
+    for (int k = 0; k < nsources; k++) {
+        if (is_source[sources[k]]) { mem_free(is_source); return error_set(NEUV_ERR_INPUT, "geodesic pairs: source vertex %d given twice", sources[k]); }
+        is_source[sources[k]] = 1;
+    }
+    for (int b0 = 0; b0 < nsources && !s; b0 += HEAT_GEODESICS_BLOCK) {
+        int k = nsources - b0 < HEAT_GEODESICS_BLOCK ? nsources - b0 : HEAT_GEODESICS_BLOCK;
+        memset(g->w_src, 0, sizeof(double) * nv * (size_t)k);
+        for (int c = 0; c < k; c++) g->w_src[(size_t)c * nv + sources[b0 + c]] = 1.0;
+        if ((s = solve_block(g, k))) break;
+        for (int c = 0; c < k && !s; c++) {
+            int src = sources[b0 + c];
+            double *col = g->w_heat + (size_t)c * nv;
+            shift_to_sources(g, col, &src, 1);
+            for (int q = 0; q < (int)nv && !s; q++) {
+                if (q == src || !(col[q] < radius) || (is_source[q] && q < src)) continue;
+                s = src < q ? pairs_push(out, src, q, col[q]) : pairs_push(out, q, src, col[q]);
+            }
+        }
+        log_progress("geodesic pairs", (double)(b0 + k) / nsources, "%zu pairs", out->n);
+    }
+    mem_free(is_source);
+    return s;
+}
+
 neuv_status heat_geodesics_face_distances(heat_geodesics *g, const neuv_mesh *m,
                                           const int *source_faces, int nsources, double *dist)
 {

@@ -96,6 +96,18 @@ void geodesic_pairs_free(geodesic_pairs *p);
 neuv_status heat_geodesics_pairs_within(heat_geodesics *g, double radius, const int *subset,
                                         int nsubset, geodesic_pairs *out);
 
+/* The pairs closer than `radius` that have at least one end among `sources`:
+ * for each source, every other vertex under the radius. Memory and time grow
+ * with nsources x #V rather than #V^2, so a fixed number of sources gives
+ * pairs linear in the mesh size. A pair of two sources is kept once (from
+ * its smaller index); pairs are stored with i < j.
+ *
+ * Inputs:  radius    distances strictly below it are kept
+ *          sources   #S distinct vertex indices
+ * Outputs: out       pairs appended to it (zero-initialize before the first call) */
+neuv_status heat_geodesics_pairs_from(heat_geodesics *g, double radius, const int *sources, int nsources,
+                                      geodesic_pairs *out);
+
 /* Distances from source faces to every face centroid, for PatchNet's L_geo.
  * The heat source of a face is 1/3 on each of its three vertices; the distance
  * of a face is the mean of its vertices' distances, shifted so the source

@@ -2,6 +2,7 @@
  * (Pokhariya et al. 2022, section 3.2). See param_net.h for the choices. */
 #include "models/param_net.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,10 @@ void param_net_default_options(param_net_options *o, param_preset preset)
     o->plateau_tol = 0.005;
     o->face_points = 1024;
     o->iso_pairs = 4096;
+    /* 2^23 pairs (128 MiB): every chart of a mesh up to ~2900 vertices keeps
+     * all its pairs, as before this budget existed; bench/RESULTS.md
+     * ("Memory at any size") has the measurements. */
+    o->iso_pair_budget = 1L << 23;
     o->psi_mode = PARAM_PSI_POOLED;
     o->seed = 1;
     /* The networks' own map (bench/RESULTS.md, "The networks' own map"):
@@ -101,6 +106,7 @@ typedef struct train_data {
     const double *given_shift, *given_mul;
     double *shift, *mul;   /* psi_dim each: standardized = (raw - shift) * mul */
     int skip_pairs;        /* inference: normalization only, no L_iso pairs */
+    int iso_sources;       /* L_iso source vertices per chart (iso_pair_budget); 0: all */
 } train_data;
 
 static void train_data_free(train_data *d)
@@ -250,6 +256,12 @@ static neuv_status chart_lscm_target(const neuv_mesh *sub, const double cen[3], 
     return NEUV_OK;
 }
 
+static int compare_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
 /* One chart: normalization, geodesic pairs, and its rows of the concatenated arrays. */
 static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, const param_net_options *o,
                              train_data *d, int *nv_used, int *nf_used)
@@ -297,7 +309,28 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
     d->scale[c] = scale;
     double *R = d->rot + 9 * c;
     chart_frame(sub, cen, R);
-    if (!d->skip_pairs) s = heat_geodesics_pairs_within(hg, o->sigma / scale, NULL, 0, &pp);
+    if (!d->skip_pairs) {
+        if (d->iso_sources > 0 && d->iso_sources < sub->nv) {
+            /* A seeded sample of the chart's vertices (partial Fisher-Yates),
+             * in ascending order so that the pairs come out as from all. */
+            int ns = d->iso_sources;
+            int *perm = mem_alloc(sizeof(int) * (size_t)sub->nv);
+            if (!perm) { s = error_nomem("L_iso sources"); goto done; }
+            for (int v = 0; v < sub->nv; v++) perm[v] = v;
+            rng r;
+            rng_seed(&r, o->seed * 0x9E3779B97F4A7C15ull + (uint64_t)c + 1);
+            for (int k = 0; k < ns; k++) {
+                int j = k + rng_below(&r, sub->nv - k), t = perm[k];
+                perm[k] = perm[j];
+                perm[j] = t;
+            }
+            qsort(perm, (size_t)ns, sizeof(int), compare_int);
+            s = heat_geodesics_pairs_from(hg, o->sigma / scale, perm, ns, &pp);
+            mem_free(perm);
+        } else {
+            s = heat_geodesics_pairs_within(hg, o->sigma / scale, NULL, 0, &pp);
+        }
+    }
     if (s != NEUV_OK) goto done;
     int vb = *nv_used, fb = *nf_used;
     for (size_t k = 0; k < pp.n; k++) {
@@ -459,6 +492,10 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
             }
     mem_free(seen); mem_free(order); mem_free(start);
     d->nv = (int)nv;
+    if (o->iso_pair_budget > 0) {
+        long per = o->iso_pair_budget / (nv > 0 ? nv : 1);
+        d->iso_sources = per < 64 ? 64 : per > INT_MAX ? INT_MAX : (int)per;
+    }
     d->nf = m->nf;
     d->vmesh = mem_alloc((size_t)nv * sizeof(int));
     d->vchart = mem_alloc((size_t)nv * sizeof(int));

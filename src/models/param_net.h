@@ -91,6 +91,12 @@ typedef struct param_net_options {
     double plateau_tol;     /* stop when a window's mean loss improves by less than this share */
     int face_points;        /* random points inside faces per step (L_cycle) */
     int iso_pairs;          /* geodesic pairs per step (all when there are fewer) */
+    /* Geodesic pairs kept for L_iso over all charts, so that memory is linear
+     * in the mesh: each chart's pairs come from budget / (chart vertices in
+     * all) source vertices (at least 64, drawn with the seed); a chart with no
+     * more vertices than that uses every vertex, all pairs under sigma as the
+     * paper has them. 0: every vertex of every chart (quadratic). */
+    long iso_pair_budget;
     param_psi_mode psi_mode;
     uint64_t seed;
     int threads;            /* > 0: nn_set_threads(threads) before training; 0: leave as is */
