@@ -35,7 +35,7 @@ done
 
 bash scripts/setup.sh
 need=()
-for p in clang libclang-rt-14-dev libomp-14-dev; do
+for p in clang libclang-rt-14-dev libomp-14-dev time; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || need+=("$p")
 done
 if [ ${#need[@]} -gt 0 ]; then
@@ -55,7 +55,8 @@ run_one() {
   local t=$1 work=$B/work/$1 corpus
   corpus=$(corpus_of "$t")
   rm -rf "$work"; mkdir -p "$work" $B/run; cp -r "$corpus"/. "$work"/
-  rm -f "$B/crashes/$t-"*
+  rm -f "$B/crashes/$t-"* "$B/logs/$t.log"
+  # ASan's default leak check stays on: a leak is a finding like a crash.
   # A copy of the binary runs, so that a rebuild meanwhile does not pull it away.
   cp $B/fuzz/fuzz_$t $B/run/fuzz_$t
   # max_len: the largest checked-in input (a saved model is 256 KiB), at least 4 KiB.
@@ -63,7 +64,10 @@ run_one() {
   maxlen=$(find "$corpus" -type f -printf '%s\n' | sort -n | tail -1)
   [ "${maxlen:-0}" -ge 4096 ] || maxlen=4096
   # ASan's default leak check stays on: a leak is a finding like a crash.
+  # GNU time appends the CPU seconds the run really had (fuzzers sharing
+  # cores get less than their wall time).
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  /usr/bin/time -a -o "$B/logs/$t.log" -f 'cpu_seconds: %U %S' \
   $B/run/fuzz_$t -max_total_time="$SECONDS_PER" -max_len="$maxlen" -timeout=25 -rss_limit_mb=4096 \
     -print_final_stats=1 -artifact_prefix="$B/crashes/$t-" "$work" >"$B/logs/$t.log" 2>&1 || true
 }
@@ -77,7 +81,7 @@ done
 wait
 
 status=0
-printf '| target | seconds | executions | exec/s | cov | ft | corpus | crashes |\n|---|---:|---:|---:|---:|---:|---:|---:|\n'
+printf '| target | wall s | CPU s | executions | exec/s | cov | ft | corpus | crashes |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n'
 for t in "${TARGETS[@]}"; do
   log=$B/logs/$t.log
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
@@ -87,8 +91,9 @@ for t in "${TARGETS[@]}"; do
   ft=$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$last")
   corp=$(find "$B/work/$t" -type f | wc -l)
   crashes=$(find "$B/crashes" -name "$t-*" -type f | wc -l)
+  cpu=$(awk '/^cpu_seconds:/ {printf "%.0f", $2 + $3}' "$log" | tail -1)
   [ "$crashes" -eq 0 ] || status=1
-  printf '| %s | %s | %s | %s | %s | %s | %s | %s |\n' "$t" "$SECONDS_PER" "${execs:-?}" "${rate:-?}" "${cov:-?}" "${ft:-?}" "$corp" "$crashes"
+  printf '| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n' "$t" "$SECONDS_PER" "${cpu:-?}" "${execs:-?}" "${rate:-?}" "${cov:-?}" "${ft:-?}" "$corp" "$crashes"
 done
 
 if [ $MERGE -eq 1 ]; then
