@@ -135,20 +135,26 @@ static neuv_status source_distances(const neuv_mesh *m, const int *src, int s, f
     neuv_status st = heat_geodesics_create(m, 1.0, &hg);
     if (st) return st;
     double diam = 0;
-    double *d = mem_alloc(sizeof(double) * (size_t)m->nf * s);
-    if (!d) { heat_geodesics_free(hg); return error_nomem("L_geo distances"); }
     st = heat_geodesics_diameter(hg, &diam);
-    if (!st) st = heat_geodesics_face_distances(hg, m, src, s, d);
-    heat_geodesics_free(hg);
-    if (st) { mem_free(d); return st; }
     if (!(diam > 0) || !isfinite(diam)) diam = 1;
-    /* Column-major #F by #S is row-major #S by #F. */
-    for (size_t i = 0; i < (size_t)m->nf * s; i++) {
-        double v = d[i] / diam;
-        dist[i] = (float)(isfinite(v) ? (v < 0 ? 0 : v) : 1.0);
+    /* A block of sources at a time in float64, so that only the float rows
+     * are #S by #F (a float64 copy of all of them was twice that again). */
+    const int block = HEAT_GEODESICS_BLOCK;
+    double *d = st ? NULL : mem_alloc(sizeof(double) * (size_t)m->nf * (s < block ? s : block));
+    if (!st && !d) st = error_nomem("L_geo distances");
+    for (int b0 = 0; !st && b0 < s; b0 += block) {
+        int k = s - b0 < block ? s - b0 : block;
+        st = heat_geodesics_face_distances(hg, m, src + b0, k, d);
+        /* Column-major #F by k is row-major k by #F: rows b0.. of dist. */
+        float *rows = dist + (size_t)b0 * m->nf;
+        for (size_t i = 0; !st && i < (size_t)m->nf * k; i++) {
+            double v = d[i] / diam;
+            rows[i] = (float)(isfinite(v) ? (v < 0 ? 0 : v) : 1.0);
+        }
     }
+    heat_geodesics_free(hg);
     mem_free(d);
-    return NEUV_OK;
+    return st;
 }
 
 /* Face logits -> softmax P (#F by K) for a model on one mesh. */
