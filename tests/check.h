@@ -58,6 +58,17 @@ static inline const char *tmp_path(const char *name)
     return b;
 }
 
+/* Writes n bytes to tmp_path(name) and returns that path (exits on failure). */
+static inline const char *write_tmp_file(const char *name, const void *data, size_t n)
+{
+    const char *path = tmp_path(name);
+    FILE *fp = fopen(path, "wb");
+    if (!fp) { perror(path); exit(1); }
+    fwrite(data, 1, n, fp);
+    fclose(fp);
+    return path;
+}
+
 #define SKIP(msg) do { printf("SKIP: %s\n", msg); exit(77); } while (0)
 
 #endif

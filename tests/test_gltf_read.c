@@ -11,16 +11,6 @@
 #include "io/mesh_io.h"
 #include "mesh/mesh.h"
 
-static const char *write_file(const char *name, const void *data, size_t n)
-{
-    const char *path = tmp_path(name);
-    FILE *fp = fopen(path, "wb");
-    if (!fp) { perror(path); exit(1); }
-    fwrite(data, 1, n, fp);
-    fclose(fp);
-    return path;
-}
-
 /* The buffer: 4 positions (float VEC3, 48 bytes), 4 UVs (normalized
  * unsigned short VEC2, 16 bytes), 4 strip indices (unsigned byte, 4 bytes). */
 static const float P[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0.5f}};
@@ -82,7 +72,7 @@ static void test_external_tree(void)
 {
     unsigned char buf[128];
     size_t n = make_buffer(buf);
-    write_file("geo.bin", buf, n);
+    write_tmp_file("geo.bin", buf, n);
     /* No scenes: node 0 is the only root; node 1 is its child (scale 2 by
      * matrix), node 2 a child of 1 (a quarter turn about z); a fan of the
      * same four vertices as a second primitive on mesh 0. */
@@ -92,7 +82,7 @@ static void test_external_tree(void)
                         "{\"matrix\":[2,0,0,0, 0,2,0,0, 0,0,2,0, 0,0,0,1],\"mesh\":0,\"children\":[2]},"
                         "{\"rotation\":[0,0,0.70710678118654752,0.70710678118654752],\"mesh\":0}],";
     const char *json = gltf_json(entry, ",{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},\"indices\":2,\"mode\":6}", nodes);
-    const char *path = write_file("tree.gltf", json, strlen(json));
+    const char *path = write_tmp_file("tree.gltf", json, strlen(json));
     neuv_mesh *m = load(path);
     if (!m) return;
     /* 3 nodes x 2 primitives x 4 vertices; strip and fan give 2 triangles each. */
@@ -143,7 +133,7 @@ static void test_glb_and_scene(void)
     memcpy(g + 20 + jp, &bl, 4);
     memcpy(g + 24 + jp, "BIN", 4); /* "BIN\0" */
     memcpy(g + 28 + jp, bin, n);
-    neuv_mesh *m = load(write_file("scene.glb", g, total));
+    neuv_mesh *m = load(write_tmp_file("scene.glb", g, total));
     if (m) {
         CHECK_INT(m->nv, 4);
         CHECK_INT(m->nf, 2);
@@ -153,14 +143,14 @@ static void test_glb_and_scene(void)
     }
     /* The same file cut short: its header's length is longer than the file. */
     neuv_mesh *bad = (neuv_mesh *)1;
-    CHECK_INT(neuv_mesh_load(write_file("cut.glb", g, total - 8), NULL, &bad), NEUV_ERR_INPUT);
+    CHECK_INT(neuv_mesh_load(write_tmp_file("cut.glb", g, total - 8), NULL, &bad), NEUV_ERR_INPUT);
     CHECK(bad == NULL && strstr(neuv_last_error(), "GLB header gives"));
     /* Found by fuzzing: a header total below the header's own size made the
      * chunk bound (total - 20) wrap around. */
     uint32_t zero = 0;
     memcpy(g + 8, &zero, 4);
     bad = (neuv_mesh *)1;
-    CHECK_INT(neuv_mesh_load(write_file("total0.glb", g, total), NULL, &bad), NEUV_ERR_INPUT);
+    CHECK_INT(neuv_mesh_load(write_tmp_file("total0.glb", g, total), NULL, &bad), NEUV_ERR_INPUT);
     CHECK(bad == NULL && strstr(neuv_last_error(), "less than a header and a chunk"));
     free(g);
 }

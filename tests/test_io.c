@@ -21,17 +21,7 @@ const char *__lsan_default_suppressions(void) { return "leak:libassimp.so\n"; }
 
 /* ---- helpers ---------------------------------------------------------- */
 
-static const char *write_file(const char *name, const void *data, size_t n)
-{
-    const char *path = tmp_path(name);
-    FILE *fp = fopen(path, "wb");
-    if (!fp) { perror(path); exit(1); }
-    fwrite(data, 1, n, fp);
-    fclose(fp);
-    return path;
-}
-
-static const char *write_text(const char *name, const char *text) { return write_file(name, text, strlen(text)); }
+static const char *write_text(const char *name, const char *text) { return write_tmp_file(name, text, strlen(text)); }
 
 /* Callbacks the loads report their warnings to (count_warnings, or none). */
 static const neuv_callbacks *load_callbacks;
@@ -257,7 +247,7 @@ static void test_ply_binary(void)
 {
     unsigned char buf[2048];
     size_t n = binary_ply_be(buf, 2);
-    neuv_mesh *m = load_ok(write_file("be.ply", buf, n));
+    neuv_mesh *m = load_ok(write_tmp_file("be.ply", buf, n));
     if (m) {
         CHECK_INT(m->nv, 4);
         CHECK_INT(m->nf, 2);
@@ -271,10 +261,10 @@ static void test_ply_binary(void)
     /* Cut inside the second face: truncated, with the counts. */
     size_t cut = binary_ply_be(buf, 1) + 5;
     binary_ply_be(buf, 2);
-    expect_load_error(write_file("trunc.ply", buf, cut), NEUV_ERR_INPUT,
+    expect_load_error(write_tmp_file("trunc.ply", buf, cut), NEUV_ERR_INPUT,
                       "truncated: header declares 2 faces, data ends after 1");
     size_t head_len = (size_t)(strstr((const char *)buf, "end_header\n") - (const char *)buf) + 11;
-    expect_load_error(write_file("trunc_v.ply", buf, head_len + 2 * 26 + 7), NEUV_ERR_INPUT,
+    expect_load_error(write_tmp_file("trunc_v.ply", buf, head_len + 2 * 26 + 7), NEUV_ERR_INPUT,
                       "truncated: header declares 4 vertices, data ends after 2");
 
     /* Little endian, float positions, ushort indices, uppercase extension. */
@@ -290,7 +280,7 @@ static void test_ply_binary(void)
     const uint16_t idx[3] = {2, 0, 1};
     memcpy(le + h + 36, &cnt, 4);
     memcpy(le + h + 40, idx, 6);
-    m = load_ok(write_file("LE.PLY", le, h + 46));
+    m = load_ok(write_tmp_file("LE.PLY", le, h + 46));
     if (m) { CHECK(tri_is(m, 0, 2, 0, 1)); CHECK(m->pos[8] == 0.5); mesh_free(m); }
 }
 
@@ -523,7 +513,7 @@ static void test_bad_input(void)
     expect_load_error(write_text("trunc.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n"), NEUV_ERR_INPUT,
                       "truncated: header declares 2 faces, data ends after 1");
     expect_load_error(write_text("notply.ply", "PLY?\n"), NEUV_ERR_INPUT, "not a PLY file");
-    expect_load_error(write_file("bin2.obj", "v 0 0 0\n\0\1\2", 11), NEUV_ERR_INPUT, "binary data");
+    expect_load_error(write_tmp_file("bin2.obj", "v 0 0 0\n\0\1\2", 11), NEUV_ERR_INPUT, "binary data");
     expect_load_error(write_text("bad.stl", "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0\n"), NEUV_ERR_INPUT,
                       "");
 

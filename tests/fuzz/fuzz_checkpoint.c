@@ -38,12 +38,6 @@ static void check_one(const uint8_t *data, size_t size)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    check_one(data, size);
-    uint8_t *copy = malloc(size ? size : 1);
-    if (!copy) return 0;
-    memcpy(copy, data, size);
-    fix_crcs(copy, size);
-    check_one(copy, size);
-    free(copy);
+    fuzz_as_is_and_crcs_fixed(data, size, check_one);
     return 0;
 }
