@@ -33,6 +33,11 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$D/good.obj"
     printf '\003\000\000\000\000\001\000\000\000\002\000\000\000'   # face 0; face 1 is missing
 } > "$D/truncated.ply"
 
+# glTF: a GLB cut short, a .gltf whose buffer file is missing, a .gltf that is not JSON.
+printf 'glTF\002\000\000\000\000\020\000\000\024\000\000\000JSON{"asset":' > "$D/cut.glb"
+printf '{"asset":{"version":"2.0"},"buffers":[{"byteLength":12,"uri":"gone.bin"}]}' > "$D/nobuffer.gltf"
+printf '{"asset":{"version":"2.0"},,}' > "$D/notjson.gltf"
+
 # check LABEL NAMED_FILE MESSAGE OUTPUT -- COMMAND...
 # NAMED_FILE is the file the error line must name (the input, or the output
 # when that is what is wrong); OUTPUT, when not empty, must not exist after
@@ -71,6 +76,9 @@ add nan       "$D/nan.obj"       "non-finite coordinate"
 add inf       "$D/inf.off"       "non-finite coordinate"
 add range     "$D/range.obj"     "references vertex 900, but there are 3 vertices"
 add nofaces   "$D/cloud.obj"     "no faces (a point cloud?); neuv needs a triangle mesh"
+add cutglb    "$D/cut.glb"       "glTF: GLB header gives 4096 bytes, the file has 29"
+add nobuffer  "$D/nobuffer.gltf" "glTF: buffer 0: cannot open 'gone.bin'"
+add notjson   "$D/notjson.gltf"  "glTF: JSON: line 1: expected a key"
 
 for i in "${!NAMES[@]}"; do
     out="$D/out-${NAMES[$i]}.obj"
