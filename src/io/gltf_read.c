@@ -66,6 +66,9 @@ static neuv_status bad(const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    /* Names from the file (a version, a URI) may hold control characters:
+     * the message stays one line. */
+    for (char *c = msg; *c; c++) if ((unsigned char)*c < 0x20) *c = '?';
     return error_set(NEUV_ERR_INPUT, "glTF: %s", msg);
 }
 
@@ -95,7 +98,7 @@ static neuv_status read_external(const char *dir, const char *uri, int i, byte_s
     path[n] = '\0';
     FILE *fp = fopen(path, "rb");
     if (!fp) {
-        neuv_status s = error_set(NEUV_ERR_INPUT, "glTF: buffer %d: cannot open '%s'", i, uri);
+        neuv_status s = bad("buffer %d: cannot open '%s'", i, uri);
         mem_free(path);
         return s;
     }
@@ -497,7 +500,7 @@ neuv_status io_read_gltf(const char *data, size_t len, const char *dir, neuv_mes
     const json_value *asset = json_get(&g.root, "asset");
     const json_value *ver = json_get(asset, "version");
     if (g.root.type != JSON_OBJECT || !ver || ver->type != JSON_STRING) s = error_set(NEUV_ERR_INPUT, "glTF: no asset.version: not a glTF file");
-    else if (strncmp(ver->string, "2.", 2)) s = error_set(NEUV_ERR_INPUT, "glTF: version %.20s (only 2.x is read)", ver->string);
+    else if (strncmp(ver->string, "2.", 2)) s = bad("version %.20s (only 2.x is read)", ver->string);
     if (!s) s = check_required_extensions(&g.root);
     if (!s) {
         g.accessors = json_get(&g.root, "accessors");
