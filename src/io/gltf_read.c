@@ -103,22 +103,12 @@ static neuv_status read_external(const char *dir, const char *uri, int i, byte_s
         return s;
     }
     mem_free(path);
-    size_t cap = 1 << 16, len = 0;
-    unsigned char *buf = mem_alloc(cap);
-    while (buf) {
-        if (len == cap) {
-            unsigned char *nb = mem_realloc(buf, cap * 2);
-            if (!nb) { mem_free(buf); buf = NULL; break; }
-            buf = nb;
-            cap *= 2;
-        }
-        size_t got = fread(buf + len, 1, cap - len, fp);
-        len += got;
-        if (got == 0) break;
-    }
+    char *buf = NULL;
+    size_t len = 0;
+    neuv_status s = io_read_all(fp, &buf, &len);
     fclose(fp);
-    if (!buf) return error_nomem("a glTF buffer");
-    out->p = out->owned = buf;
+    if (s) return s;
+    out->p = out->owned = (unsigned char *)buf;
     out->n = len;
     return NEUV_OK;
 }

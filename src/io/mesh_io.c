@@ -28,7 +28,7 @@ static void extension_of(const char *path, char ext[16])
 
 /* Reads the whole file into one NUL-terminated buffer: parsing from memory
  * with strtod is many times faster than reading characters from a FILE. */
-static neuv_status read_all(FILE *fp, char **data, size_t *len)
+neuv_status io_read_all(FILE *fp, char **data, size_t *len)
 {
     size_t cap = 1 << 16, n = 0;
     struct stat st;
@@ -91,7 +91,7 @@ static neuv_status mesh_load(const char *path, neuv_mesh **out)
     if (!fp) return error_set(NEUV_ERR_IO, "cannot open: %s", strerror(errno));
     char *data = NULL;
     size_t len = 0;
-    neuv_status s = read_all(fp, &data, &len);
+    neuv_status s = io_read_all(fp, &data, &len);
     fclose(fp);
     if (s != NEUV_OK) return s;
     if (len == 0) {

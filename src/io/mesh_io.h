@@ -17,6 +17,10 @@
 
 #include "mesh/mesh.h"
 
+/* The whole of an open file in one NUL-terminated buffer (mem_free it);
+ * *len excludes the NUL. NEUV_ERR_IO on a read error, NEUV_ERR_NOMEM. */
+neuv_status io_read_all(FILE *fp, char **data, size_t *len);
+
 /* Wavefront OBJ: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices). */
 neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out);
 /* OFF and its COFF/NOFF/STOFF variants, with # comments. */

@@ -310,26 +310,24 @@ static neuv_status add_chart(const neuv_mesh *m, const int *face_chart, int c, c
     double *R = d->rot + 9 * c;
     chart_frame(sub, cen, R);
     if (!d->skip_pairs) {
-        if (d->iso_sources > 0 && d->iso_sources < sub->nv) {
-            /* A seeded sample of the chart's vertices (partial Fisher-Yates),
-             * in ascending order so that the pairs come out as from all. */
-            int ns = d->iso_sources;
-            int *perm = mem_alloc(sizeof(int) * (size_t)sub->nv);
-            if (!perm) { s = error_nomem("L_iso sources"); goto done; }
-            for (int v = 0; v < sub->nv; v++) perm[v] = v;
+        /* Every vertex a source, or a seeded sample of iso_sources of them
+         * (partial Fisher-Yates), sorted so that the pairs come out as from all. */
+        int ns = d->iso_sources > 0 && d->iso_sources < sub->nv ? d->iso_sources : sub->nv;
+        int *src = mem_alloc(sizeof(int) * (size_t)sub->nv);
+        if (!src) { s = error_nomem("L_iso sources"); goto done; }
+        for (int v = 0; v < sub->nv; v++) src[v] = v;
+        if (ns < sub->nv) {
             rng r;
             rng_seed(&r, o->seed * 0x9E3779B97F4A7C15ull + (uint64_t)c + 1);
             for (int k = 0; k < ns; k++) {
-                int j = k + rng_below(&r, sub->nv - k), t = perm[k];
-                perm[k] = perm[j];
-                perm[j] = t;
+                int j = k + rng_below(&r, sub->nv - k), t = src[k];
+                src[k] = src[j];
+                src[j] = t;
             }
-            qsort(perm, (size_t)ns, sizeof(int), compare_int);
-            s = heat_geodesics_pairs_from(hg, o->sigma / scale, perm, ns, &pp);
-            mem_free(perm);
-        } else {
-            s = heat_geodesics_pairs_within(hg, o->sigma / scale, NULL, 0, &pp);
+            qsort(src, (size_t)ns, sizeof(int), compare_int);
         }
+        s = heat_geodesics_pairs_from(hg, o->sigma / scale, src, ns, &pp);
+        mem_free(src);
     }
     if (s != NEUV_OK) goto done;
     int vb = *nv_used, fb = *nf_used;
