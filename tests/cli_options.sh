@@ -149,6 +149,10 @@ refused plain --finetune "${LSCM[@]}" --finetune 3
 refused plain --check-inference "${LSCM[@]}" --check-inference
 refused plain --lscm-baseline "${LSCM[@]}" --lscm-baseline
 refused plain --shared-layer "${LSCM[@]}" --shared-layer
+# A budget below what training this mesh needs refuses it before training
+# starts (issue 20: memory); with enough budget the atlas is the plain run's.
+refused plain --max-memory "${LSCM[@]}" --max-memory 1 --train-faces 0
+effect plain --max-memory L 'same' --quiet "${LSCM[@]}" --max-memory 100000
 
 # ---- save: the plain row's atlas, the option in the model -------------------
 effect save --method "$P_METHOD" 'same and cfg("s1.neuv")["method"] == "lscm"' \
@@ -197,7 +201,7 @@ effect surface --no-cache "$S_CHECK" 'files("cacheB") == 0 < files("cacheA") and
 RUN_ENV=()
 effect surface --threads SA 'r["threads"] == 2 and same' --quiet --model "$S" --threads 2
 effect surface --quiet SA 'quiet and same' --model "$S" --quiet
-for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" \
+for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" "--max-memory 100" \
          "--resolution 512" "--padding 5" "--refine 0" "--allow-overlaps" "--finetune 3" "--shared-layer" \
          "--save-model $TMP/x.neuv"; do
   refused surface "${a%% *}" --model "$S" $a
@@ -210,8 +214,14 @@ effect category --refine C 'r["param"]["refine_steps"] == 0 < ref["param"]["refi
 effect category --resolution C 'r["pack"]["resolution"] == 512 and ref["pack"]["resolution"] == 256 and not same' \
   --quiet --model "$CAT" --resolution 512
 effect category --padding C 'r["pack"]["padding"] == 5 and not same' --quiet --model "$CAT" --padding 5
-effect category --allow-overlaps C '"network_folded" in sources(r) and "lscm_after_fold" in sources(ref) and not same' \
-  --quiet --model "$CAT" --allow-overlaps
+# --allow-overlaps needs charts that fold: a second category model with two
+# patches (big charts) and three network steps, where some do (how many
+# fold on CAT itself changes with any change to training).
+"$NEUV" train -o "$TMP/cat2.neuv" "$TMP/m0.obj" "$TMP/m1.obj" --charts 2 --iters 3 --patch-iters 20 --resolution 256 \
+  --refine 20 --threads 1 --quiet || bad "train (two patches) failed"
+run C2 --quiet --model "$TMP/cat2.neuv"
+effect category --allow-overlaps C2 '"network_folded" in sources(r) and "lscm_after_fold" in sources(ref) and not same' \
+  --quiet --model "$TMP/cat2.neuv" --allow-overlaps
 effect category --shared-layer C 'r["model"]["output_layer"] == "shared" and not same' --quiet --model "$CAT" --shared-layer
 effect category --finetune C 'r["model"]["finetune_steps"] == 3 and ref["model"]["finetune_steps"] == 0 and not same' \
   --quiet --model "$CAT" --finetune 3
@@ -219,7 +229,7 @@ F=$LAST  # the finetune mode's run without further options
 effect category --no-cache C 'not r["patches"]["operators_cache_hit"] and ref["patches"]["operators_cache_hit"] and same' \
   --quiet --model "$CAT" --no-cache
 effect category --threads C 'r["threads"] == 2' --quiet --model "$CAT" --threads 2
-for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" \
+for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" "--max-memory 100" \
          "--check-inference" "--lscm-baseline" "--save-model $TMP/x.neuv"; do
   refused category "${a%% *}" --model "$CAT" $a
 done
@@ -254,7 +264,7 @@ effect ft+save --padding "$F" 'r["pack"]["padding"] == 5 and cfg("FT4.neuv")["pa
 effect finetune --allow-overlaps "$F" 'r["model"]["finetune_steps"] == 3 and sources(r) == sources(ref)' \
   --quiet --model "$CAT" --finetune 3 --allow-overlaps
 for a in "--shared-layer" "--check-inference" "--lscm-baseline" "--method lscm" "--preset paper" "--charts 3" \
-         "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500"; do
+         "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" "--max-memory 100"; do
   refused finetune "${a%% *}" --model "$CAT" --finetune 3 $a
   refused ft+save "${a%% *}" --model "$CAT" --finetune 3 --save-model "$TMP/x.neuv" $a
 done
@@ -266,6 +276,11 @@ TR=(-o "$TMP/t.neuv" "$TMP/m0.obj" --iters 10 --patch-iters 10 --threads 1 --qui
 [ $rc -eq 2 ] && [ "$(wc -l < "$TMP/t.err")" -eq 1 ] && grep -q -- "--max-distortion" "$TMP/t.err" && ok \
   || bad "train --charts 3 --max-distortion: rc=$rc $(cat "$TMP/t.err")"
 row --max-distortion train "refused with --charts K: $(sed 's/^neuv: error: //' "$TMP/t.err")"
+rm -f "$TMP/t.neuv"
+"$NEUV" train "${TR[@]}" --max-memory 1 2>"$TMP/t.err"; rc=$?
+[ $rc -eq 2 ] && [ "$(wc -l < "$TMP/t.err")" -eq 1 ] && grep -q -- "--max-memory" "$TMP/t.err" && [ ! -e "$TMP/t.neuv" ] && ok \
+  || bad "train --max-memory 1: rc=$rc $(cat "$TMP/t.err")"
+row --max-memory train "a budget below the estimate refuses: $(sed 's/^neuv: error: //' "$TMP/t.err")"
 for a in "--resolution 512:resolution:512" "--padding 5:padding:5" "--refine 0:refine:0" "--seed 2:seed:2" \
          "--max-distortion 1.3:max_distortion:1.3" "--charts 3:charts_auto:0"; do
   IFS=: read -r opt key want <<<"$a"

@@ -256,6 +256,9 @@ typedef struct neuv_chart_options {
     unsigned long long seed; /* every random choice derives from it (1) */
     int threads;             /* 0: the machine's */
     int use_cache;           /* 1: operators through the on-disk cache (default 1) */
+    int max_memory_mb;       /* training refuses (NEUV_ERR_NOMEM, before it starts) a mesh whose
+                                estimated peak memory is above this many MiB; 0 (default): half
+                                of the machine's physical memory */
 } neuv_chart_options;
 NEUV_API void neuv_chart_options_init(neuv_chart_options *o);
 
@@ -298,6 +301,8 @@ typedef struct neuv_unwrap_options {
                                 the atlas is the same as without */
     int train_faces;         /* > 0: above this many faces, train on a simplified copy of that many
                                 and apply the model to the mesh (0, the default: train on the mesh) */
+    int max_memory_mb;       /* as in neuv_chart_options: the budget that training on the whole
+                                mesh (or on all of a category's shapes) must fit */
 } neuv_unwrap_options;
 NEUV_API void neuv_unwrap_options_init(neuv_unwrap_options *o);
 

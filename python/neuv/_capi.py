@@ -36,7 +36,7 @@ class MeshDecl(Structure):
 
 class ChartOptions(Structure):
     _fields_ = [("preset", c_int), ("charts", c_int), ("max_distortion", c_double), ("iters", c_int),
-                ("seed", c_ulonglong), ("threads", c_int), ("use_cache", c_int)]
+                ("seed", c_ulonglong), ("threads", c_int), ("use_cache", c_int), ("max_memory_mb", c_int)]
 
 
 class ParamOptions(Structure):
@@ -52,7 +52,7 @@ class UnwrapOptions(Structure):
     _fields_ = [("method", c_int), ("preset", c_int), ("charts", c_int), ("max_distortion", c_double),
                 ("iters", c_int), ("refine", c_int), ("seed", c_ulonglong), ("threads", c_int),
                 ("resolution", c_int), ("padding", c_int), ("allow_overlaps", c_int), ("use_cache", c_int),
-                ("keep_model", c_int), ("train_faces", c_int)]
+                ("keep_model", c_int), ("train_faces", c_int), ("max_memory_mb", c_int)]
 
 
 class ApplyOptions(Structure):

@@ -98,9 +98,10 @@ CONVERTERS = {
     "shared_layer": _flag,
     "finetune": lambda n, v: _integer(n, v, 0, 1000000),
     "patch_iters": lambda n, v: _integer(n, v, 0, 10000000),
+    "max_memory_mb": lambda n, v: _integer(n, v, 0),
 }
 
-CHART = ("preset", "charts", "max_distortion", "iters", "seed", "threads", "use_cache")
+CHART = ("preset", "charts", "max_distortion", "iters", "seed", "threads", "use_cache", "max_memory_mb")
 PARAM = ("method", "preset", "iters", "refine", "seed", "threads", "allow_overlaps")
 PACK = ("resolution", "padding")
 PACK_UVS = PACK + ("keep_scale",)
@@ -109,7 +110,7 @@ GENERATE = UNWRAP + ("keep_model",)
 APPLY = ("threads", "use_cache", "allow_overlaps", "check_inference", "lscm_baseline", "finetune",
          "shared_layer", "refine", "resolution", "padding", "keep_model")
 TRAIN = ("preset", "charts", "max_distortion", "iters", "patch_iters", "refine", "seed", "threads",
-         "resolution", "padding", "use_cache")
+         "resolution", "padding", "use_cache", "max_memory_mb")
 
 # The CLI's default where it differs from the library's (src/cli/cmd_unwrap.c):
 # above this many faces, train on a simplified copy and apply the model.

@@ -17,6 +17,7 @@ void neuv_chart_options_init(neuv_chart_options *o)
     o->seed = u.seed;
     o->threads = u.threads;
     o->use_cache = u.use_cache;
+    o->max_memory_mb = u.max_memory_mb;
 }
 
 void neuv_param_options_init(neuv_param_options *o)
@@ -59,6 +60,7 @@ void api_options_set_charts(neuv_unwrap_options *u, const neuv_chart_options *o)
     u->seed = o->seed;
     u->threads = o->threads;
     u->use_cache = o->use_cache;
+    u->max_memory_mb = o->max_memory_mb;
 }
 
 void api_options_set_param(neuv_unwrap_options *u, const neuv_param_options *o)

@@ -10,6 +10,7 @@ static const char *usage_text =
     "usage: neuv train -o M.neuv IN... [--charts auto|K] [--max-distortion X] [--preset fast|paper]\n"
     "                  [--iters N] [--patch-iters N] [--refine N] [--seed S] [--threads T]\n"
     "                  [--resolution PX] [--padding PX] [--report R.json] [--no-cache] [--quiet]\n"
+    "                  [--max-memory MIB]\n"
     "  trains PatchNet and the parameterization networks on all inputs at once (a category\n"
     "  model); `neuv unwrap --model M.neuv NEW` then unwraps an unseen shape by inference\n";
 
@@ -18,7 +19,7 @@ int cmd_train(int argc, char **argv)
     neuv_unwrap_options o;
     neuv_unwrap_options_init(&o);
     const char *out = NULL, *charts = NULL, *preset = NULL, *report = NULL;
-    int seed = -1, refine = -1, patch_iters = 0, bad = 0, n = 0, max_distortion_given = 0;
+    int seed = -1, refine = -1, patch_iters = 0, bad = 0, n = 0, max_distortion_given = 0, max_memory_given = 0;
     const char **inputs = calloc((size_t)argc, sizeof *inputs);
     if (!inputs) return cli_error(NULL, "out of memory");
     for (int i = 1; i < argc && !bad; i++) {
@@ -34,6 +35,7 @@ int cmd_train(int argc, char **argv)
         if (cli_arg_int(argc, argv, &i, "--seed", &seed, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--resolution", &o.resolution, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--padding", &o.padding, &bad)) continue;
+        if (cli_arg_int(argc, argv, &i, "--max-memory", &o.max_memory_mb, &bad)) { max_memory_given = 1; continue; }
         if (!strcmp(argv[i], "--no-cache")) { o.use_cache = 0; continue; }
         if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) { fputs(usage_text, stdout); free(inputs); return 0; }
         if (argv[i][0] == '-' && argv[i][1]) { free(inputs); return cli_error(NULL, "train: unknown option '%s'", argv[i]); }
@@ -53,6 +55,8 @@ int cmd_train(int argc, char **argv)
     if (!rc && seed < -1) rc = cli_error(NULL, "--seed must be non-negative");
     if (!rc && (o.resolution < 64 || o.resolution > 16384)) rc = cli_error(NULL, "--resolution must be in 64..16384");
     if (!rc && (o.padding < 0 || o.padding > o.resolution / 8)) rc = cli_error(NULL, "--padding must be in 0..resolution/8");
+    if (!rc && (o.max_memory_mb < 0 || (max_memory_given && o.max_memory_mb == 0)))
+        rc = cli_error(NULL, "--max-memory must be a size in MiB (without it: half of this machine's memory)");
     for (int i = 0; !rc && i < n; i++) {
         rc = cli_check_output_not_input(out, inputs[i]);
         if (!rc && report) rc = cli_check_output_not_input(report, inputs[i]);

@@ -13,7 +13,7 @@ static const char *usage_text =
     "                   [--preset fast|paper] [--iters N] [--refine N] [--seed S] [--threads T]\n"
     "                   [--resolution PX] [--padding PX] [--allow-overlaps] [--no-cache] [--quiet]\n"
     "                   [--save-model M.neuv] [--model M.neuv [--finetune N] [--check-inference] [--lscm-baseline]\n"
-    "                   [--shared-layer]] [--train-faces N]\n";
+    "                   [--shared-layer]] [--train-faces N] [--max-memory MIB]\n";
 
 /* Above this many faces the networks train on a simplified copy and the model
  * is applied to the full mesh. Measured (bench/bench_train_faces.sh,
@@ -53,6 +53,7 @@ int cmd_unwrap(int argc, char **argv)
     int seed = -1, bad = 0, finetune = 0, refine = -1;
     /* The options a model cannot take, when given (their values may be the defaults). */
     int max_distortion_given = 0, iters_given = 0, resolution_given = 0, padding_given = 0, train_faces_given = 0;
+    int max_memory_given = 0;
     job.train_faces = DEFAULT_TRAIN_FACES;
     for (int i = 1; i < argc && !bad; i++) {
         if (cli_arg_global(argc, argv, &i, &bad)) continue;
@@ -73,6 +74,7 @@ int cmd_unwrap(int argc, char **argv)
         if (cli_arg_str(argc, argv, &i, "--model", &job.model, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--finetune", &finetune, &bad)) continue;
         if (cli_arg_int(argc, argv, &i, "--train-faces", &job.train_faces, &bad)) { train_faces_given = 1; continue; }
+        if (cli_arg_int(argc, argv, &i, "--max-memory", &o.max_memory_mb, &bad)) { max_memory_given = 1; continue; }
         if (!strcmp(argv[i], "--check-inference")) { job.check_inference = 1; continue; }
         if (!strcmp(argv[i], "--lscm-baseline")) { job.lscm_baseline = 1; continue; }
         if (!strcmp(argv[i], "--shared-layer")) { job.shared_layer = 1; continue; }
@@ -109,6 +111,8 @@ int cmd_unwrap(int argc, char **argv)
     if (job.train_faces < 0) return cli_error(NULL, "--train-faces must be 0 (never simplify) or a face count");
     if (job.train_faces > 0 && job.train_faces < 500)
         return cli_error(NULL, "--train-faces must be at least 500 (or 0 to train on the full mesh)");
+    if (o.max_memory_mb < 0 || (max_memory_given && o.max_memory_mb == 0))
+        return cli_error(NULL, "--max-memory must be a size in MiB (without it: half of this machine's memory)");
     if (finetune < 0 || finetune > 1000000) return cli_error(NULL, "--finetune must be a step count in 0..1000000");
     if (finetune > 0 && !job.model) return cli_error(NULL, "--finetune needs --model");
     job.finetune = finetune;
@@ -136,6 +140,8 @@ int cmd_unwrap(int argc, char **argv)
             : seed >= 0 ? "--seed cannot be used with --model: the model's seed is used"
             : train_faces_given ? "--train-faces cannot be used with --model: nothing trains on a simplified copy "
                                   "(--finetune trains on the mesh itself)"
+            : max_memory_given ? "--max-memory cannot be used with --model: it bounds training on the whole mesh, "
+                                 "and a model is applied"
             : NULL;
         if (refused) return cli_error(job.model, "%s", refused);
         job.refine = refine;

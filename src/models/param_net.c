@@ -880,6 +880,10 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         }
     }
     rep->iters = it;
+    /* The training step's arena (every face's loss terms) is not needed by
+     * the solves; a fresh context holds the final map below. */
+    nn_ctx_free(ctx);
+    ctx = NULL;
     if (o->solve_steps > 0 && o->depth >= 2) {
         param_solve_data sd = {d.nv, d.nf, n_charts, d.x, d.x, 3, d.vchart, pooled ? d.psi : d.feat, d.psi_dim,
                                !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w, 0, 0, NULL, 0};
@@ -913,6 +917,8 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         rep->heads_improved = hr.heads_improved;
     }
     rep->train_seconds = now_seconds() - t1;
+    ctx = nn_ctx_create(0);
+    if (!ctx) { s = error_nomem("parameterization map"); goto done; }
 
     /* Final map at the vertices, oriented counter-clockwise per chart. */
     model->mirror = mem_alloc((size_t)n_charts * sizeof(int));

@@ -16,21 +16,34 @@ int param_head_size(const param_mlp *f)
     return 2 * (param_mlp_head_width(f) + 1);
 }
 
-/* Features of `m` at nv inputs (in: nv by in_dim), as doubles: the last
- * hidden layer (width), or with heads every hidden layer (param_mlp_head_width). */
+/* Features of `m` at nv inputs (in: nv by in_dim), as the network computes
+ * them (float): the last hidden layer (width), or with heads every hidden
+ * layer (param_mlp_head_width). Computed HIDDEN_ROWS inputs at a time, so
+ * that the network's intermediate tensors stay a fixed size whatever nv is
+ * (each row is a function of its own input only: the same values). */
+enum { HIDDEN_ROWS = 4096 };
 static neuv_status hidden_at(const param_mlp *m, const param_solve_data *d, const float *in, int in_dim, int heads,
-                             double *phi)
+                             float *phi)
 {
     nn_ctx *ctx = nn_ctx_create(0);
     if (!ctx) return error_nomem("output-layer solve");
-    nn_tensor *x = nn_from(ctx, d->nv, in_dim, in);
-    int rows = d->psi_per_vertex ? d->nv : d->n_charts;
-    nn_tensor *psi = d->psi_dim > 0 ? nn_view(ctx, rows, d->psi_dim, (float *)d->psi) : NULL;
-    const int *row = d->psi_per_vertex ? NULL : d->vchart;
-    nn_tensor *h = heads ? param_mlp_head_features(ctx, m, x, psi, row) : param_mlp_hidden(ctx, m, x, psi, row);
-    neuv_status s = h ? NEUV_OK : nn_ctx_status(ctx);
-    if (h)
-        for (long i = 0; i < (long)d->nv * h->cols; i++) phi[i] = h->data[i];
+    neuv_status s = NEUV_OK;
+    for (int r0 = 0; r0 < d->nv && s == NEUV_OK; r0 += HIDDEN_ROWS) {
+        int n = d->nv - r0 < HIDDEN_ROWS ? d->nv - r0 : HIDDEN_ROWS;
+        nn_ctx_reset(ctx);
+        nn_tensor *x = nn_view(ctx, n, in_dim, (float *)in + (size_t)r0 * in_dim);
+        nn_tensor *psi = NULL;
+        const int *row = NULL;
+        if (d->psi_dim > 0 && d->psi_per_vertex) {
+            psi = nn_view(ctx, n, d->psi_dim, (float *)d->psi + (size_t)r0 * d->psi_dim);
+        } else if (d->psi_dim > 0) {
+            psi = nn_view(ctx, d->n_charts, d->psi_dim, (float *)d->psi);
+            row = d->vchart + r0;
+        }
+        nn_tensor *h = heads ? param_mlp_head_features(ctx, m, x, psi, row) : param_mlp_hidden(ctx, m, x, psi, row);
+        if (!h) { s = nn_ctx_status(ctx); break; }
+        memcpy(phi + (size_t)r0 * h->cols, h->data, sizeof(float) * (size_t)n * h->cols);
+    }
     nn_ctx_free(ctx);
     return s;
 }
@@ -103,12 +116,12 @@ typedef struct block {
 } block;
 
 /* z = φ̂ θ and uv = tanh(z) at the block's vertices (arrays indexed by vertex). */
-static void map_block(const double *phi, int H, const double *theta, const block *b, double *z, double *uv)
+static void map_block(const float *phi, int H, const double *theta, const block *b, double *z, double *uv)
 {
     int K = H + 1;
     for (int k = 0; k < b->nv; k++) {
         int v = b->verts[k];
-        const double *p = phi + (size_t)v * H;
+        const float *p = phi + (size_t)v * H;
         for (int j = 0; j < 2; j++) {
             const double *t = theta + (size_t)j * K;
             double acc = t[H];
@@ -186,7 +199,7 @@ static double block_anchor(const block *b, const double *uv, const double *uv0, 
 /* The fold barrier's row for face f when it is active (σ det J < ε s̄²):
  * r = k (ε s̄² − σ det J) with k = sqrt(fold_weight w_f / s̄²), det J
  * linearized in the vertices' u, v and those through tanh as above. */
-static void fold_row(const param_solve_data *d, int f, const double *phi, int H, const double *z, const double *uv,
+static void fold_row(const param_solve_data *d, int f, const float *phi, int H, const double *z, const double *uv,
                      double sg, double s2, normal_eq *q)
 {
     const int *t = d->tri + 3 * f;
@@ -201,7 +214,7 @@ static void fold_row(const param_solve_data *d, int f, const double *phi, int H,
     double cst = k * gap;
     for (int j = 0; j < 3; j++) {
         int v = t[j];
-        const double *p = phi + (size_t)v * H;
+        const float *p = phi + (size_t)v * H;
         double su = 1 - uv[2 * v] * uv[2 * v], sv = 1 - uv[2 * v + 1] * uv[2 * v + 1];
         double du = sg * (J[3] * wx[j] - J[2] * wy[j]) * su, dv = sg * (J[0] * wy[j] - J[1] * wx[j]) * sv;
         for (int i = 0; i < H; i++) { r[i] -= k * du * p[i]; r[K + i] -= k * dv * p[i]; }
@@ -211,10 +224,10 @@ static void fold_row(const param_solve_data *d, int f, const double *phi, int H,
     *c = cst;
 }
 
-static void anchor_rows(const block *b, const double *phi, int H, const double *z, const double *uv, const double *uv0,
+static void anchor_rows(const block *b, const float *phi, int H, const double *z, const double *uv, const double *uv0,
                         const double *mv, double anchor, normal_eq *q);
 
-static void gauss_newton_rows(const param_solve_data *d, const block *b, const double *phi, int H, const double *z,
+static void gauss_newton_rows(const param_solve_data *d, const block *b, const float *phi, int H, const double *z,
                               const double *uv, const double *uv0, const double *mv, const int *sigma,
                               const double *fold_s2, double anchor, normal_eq *q)
 {
@@ -231,7 +244,7 @@ static void gauss_newton_rows(const param_solve_data *d, const block *b, const d
         /* r1 = ∂u/∂x − σ ∂v/∂y, r2 = ∂u/∂y + σ ∂v/∂x */
         for (int j = 0; j < 3; j++) {
             int v = t[j];
-            const double *p = phi + (size_t)v * H;
+            const float *p = phi + (size_t)v * H;
             double su = 1 - uv[2 * v] * uv[2 * v], sv = 1 - uv[2 * v + 1] * uv[2 * v + 1];
             double ku = uv[2 * v] - su * z[2 * v], kv = uv[2 * v + 1] - sv * z[2 * v + 1];
             double a1 = w * wx[j] * su, a2 = w * wy[j] * su, b1 = -sg * w * wy[j] * sv, b2 = sg * w * wx[j] * sv;
@@ -248,7 +261,7 @@ static void gauss_newton_rows(const param_solve_data *d, const block *b, const d
 }
 
 /* The anchor's two rows per vertex, linearized through tanh. */
-static void anchor_rows(const block *b, const double *phi, int H, const double *z, const double *uv, const double *uv0,
+static void anchor_rows(const block *b, const float *phi, int H, const double *z, const double *uv, const double *uv0,
                         const double *mv, double anchor, normal_eq *q)
 {
     int K = H + 1;
@@ -256,7 +269,7 @@ static void anchor_rows(const block *b, const double *phi, int H, const double *
         int v = b->verts[k];
         double w = sqrt(anchor * mv[v]);
         if (!(w > 0)) continue;
-        const double *p = phi + (size_t)v * H;
+        const float *p = phi + (size_t)v * H;
         for (int j = 0; j < 2; j++) {
             double *c, *r = normal_eq_row(q, &c);
             double s = 1 - uv[2 * v + j] * uv[2 * v + j], kap = uv[2 * v + j] - s * z[2 * v + j];
@@ -290,7 +303,7 @@ static double block_energy_mips(const param_solve_data *d, const block *b, const
 /* Gauss-Newton rows of block_energy_mips (residuals r/sqrt(D), r the
  * Cauchy-Riemann pair, D = σ det J), linearized through tanh, and the
  * anchor's rows. Every face must be unfolded. */
-static void mips_rows(const param_solve_data *d, const block *b, const double *phi, int H, const double *z,
+static void mips_rows(const param_solve_data *d, const block *b, const float *phi, int H, const double *z,
                       const double *uv, const double *uv0, const double *mv, const int *sigma, double anchor,
                       normal_eq *q)
 {
@@ -308,7 +321,7 @@ static void mips_rows(const param_solve_data *d, const block *b, const double *p
             double *c, *row = normal_eq_row(q, &c), cst = w * r[e] * rs;
             for (int j = 0; j < 3; j++) {
                 int v = t[j];
-                const double *p = phi + (size_t)v * H;
+                const float *p = phi + (size_t)v * H;
                 double su = 1 - uv[2 * v] * uv[2 * v], sv = 1 - uv[2 * v + 1] * uv[2 * v + 1];
                 /* ∂r/∂u_v, ∂r/∂v_v and ∂D/∂u_v, ∂D/∂v_v */
                 double ru = e == 0 ? wx[j] : wy[j], rv = e == 0 ? -sg * wy[j] : sg * wx[j];
@@ -329,7 +342,7 @@ static void mips_rows(const param_solve_data *d, const block *b, const double *p
 typedef struct solve_state {
     const param_solve_data *d;
     int H;
-    double *phi;             /* nv by H */
+    float *phi;              /* nv by H: the network's features */
     double *z, *uv, *uv0;    /* nv by 2 */
     double *tz, *tuv;        /* nv by 2, trial */
     double *mv;              /* nv anchor weights (pins included) */
@@ -381,7 +394,7 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     st->d = d;
     int H = st->H = heads ? param_mlp_head_width(f) : f->width, nv = d->nv, nc = d->n_charts > 0 ? d->n_charts : 1;
     size_t v2 = sizeof(double) * 2 * (size_t)(nv > 0 ? nv : 1);
-    st->phi = mem_alloc(sizeof(double) * (size_t)(nv > 0 ? nv : 1) * H);
+    st->phi = mem_alloc(sizeof(float) * (size_t)(nv > 0 ? nv : 1) * H);
     st->z = mem_alloc(v2); st->uv = mem_alloc(v2); st->uv0 = mem_alloc(v2); st->tz = mem_alloc(v2); st->tuv = mem_alloc(v2);
     st->mv = mem_calloc((size_t)(nv > 0 ? nv : 1), sizeof(double));
     st->sigma = mem_alloc(sizeof(int) * (size_t)nc);
@@ -633,14 +646,13 @@ neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const f
     int H = g->width, K = H + 1, nv = d->nv, F = heads ? param_mlp_head_width(f) : f->width;
     nn_linear *out = &g->rest[g->depth - 2];
     float *uvf = mem_alloc(sizeof(float) * 2 * (size_t)nv), *hf = mem_alloc(sizeof(float) * (size_t)nv * F);
-    double *phi_f = mem_alloc(sizeof(double) * (size_t)nv * F), *phi = mem_alloc(sizeof(double) * (size_t)nv * H);
+    float *phi = mem_alloc(sizeof(float) * (size_t)nv * H);
     double *rhs = mem_calloc((size_t)K * 3, sizeof(double));
     normal_eq q = {0};
     neuv_status s = NEUV_OK;
-    if (!uvf || !hf || !phi_f || !phi || !rhs) { s = error_nomem("output-layer solve"); goto done; }
+    if (!uvf || !hf || !phi || !rhs) { s = error_nomem("output-layer solve"); goto done; }
     /* MLP_f's outputs at the vertices, then MLP_f⁻¹'s hidden layer there. */
-    if ((s = hidden_at(f, d, d->f_in, d->f_in_dim, heads != NULL, phi_f)) != NEUV_OK) goto done;
-    for (long i = 0; i < (long)nv * F; i++) hf[i] = (float)phi_f[i];
+    if ((s = hidden_at(f, d, d->f_in, d->f_in_dim, heads != NULL, hf)) != NEUV_OK) goto done;
     if (heads) {
         param_heads_apply(f, hf, nv, d->vchart, heads, uvf);
     } else {
@@ -648,7 +660,7 @@ neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const f
         for (int v = 0; v < nv; v++)
             for (int j = 0; j < 2; j++) {
                 double acc = fo->b->data[j];
-                for (int i = 0; i < F; i++) acc += phi_f[(size_t)v * F + i] * fo->w->data[(size_t)i * 2 + j];
+                for (int i = 0; i < F; i++) acc += (double)hf[(size_t)v * F + i] * fo->w->data[(size_t)i * 2 + j];
                 uvf[2 * v + j] = (float)tanh(acc);
             }
     }
@@ -663,7 +675,7 @@ neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const f
             if (1 - x * x < w) w = 1 - x * x;
         }
         if (!(w > 1e-6)) w = 1e-6;
-        for (int i = 0; i < H; i++) r[i] = w * phi[(size_t)v * H + i];
+        for (int i = 0; i < H; i++) r[i] = w * (double)phi[(size_t)v * H + i];
         r[H] = w;
         for (int j = 0; j < 3; j++) {
             double x = d->x[3 * v + j];
@@ -680,7 +692,7 @@ neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const f
     }
 done:
     normal_eq_free(&q);
-    mem_free(uvf); mem_free(hf); mem_free(phi_f); mem_free(phi); mem_free(rhs);
+    mem_free(uvf); mem_free(hf); mem_free(phi); mem_free(rhs);
     return s;
 }
 

@@ -74,19 +74,17 @@ void nn_ctx_reset(nn_ctx *ctx)
 {
     if (!ctx) return;
     /* A step that needed several blocks gets one block of the total size, so the
-     * next identical step runs without touching the heap. */
+     * next identical step runs without touching the heap. The old blocks go
+     * first (nothing in them outlives a reset), so that the merge never holds
+     * twice the step's memory. */
     size_t unmerged = 0;
     if (ctx->first && ctx->first->next) {
         size_t total = 0;
         for (arena_block *b = ctx->first; b; b = b->next) total += b->cap;
-        arena_block *merged = block_create(total);
-        if (merged) {
-            blocks_free(ctx->first);
-            ctx->first = merged;
-            ctx->grow_count++;
-        } else {
-            unmerged = total;
-        }
+        blocks_free(ctx->first);
+        ctx->first = block_create(total);
+        ctx->grow_count++;
+        if (!ctx->first) unmerged = total;
     }
     for (arena_block *b = ctx->first; b; b = b->next) b->used = 0;
     ctx->cur = ctx->first;

@@ -27,6 +27,7 @@
 #include "models/patchnet.h"
 #include "nn/nn.h"
 #include "segment/patchnet_segment.h"
+#include "unwrap/memory_budget.h"
 #include "unwrap/unwrap_apply.h"
 #include "unwrap/unwrap_model.h"
 
@@ -470,6 +471,8 @@ static neuv_status charts_by_patchnet(struct neuv_unwrap_result *r, const unwrap
     neuv_status s;
     double t;
 
+    if (!category && (s = memory_check_training(m->nf, o->max_memory_mb, "this mesh", MEMORY_BUDGET_HINT)) != NEUV_OK)
+        return s;
     t = now_seconds();
     log_progress("operators", 0, NULL);
     operators ops;

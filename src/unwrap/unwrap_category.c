@@ -16,6 +16,7 @@
 #include "models/patchnet.h"
 #include "nn/nn.h"
 #include "segment/patchnet_segment.h"
+#include "unwrap/memory_budget.h"
 #include "unwrap/unwrap_internal.h"
 
 #define CATEGORY_PSI_NOISE 0.5
@@ -116,6 +117,14 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     double *corner_uv = NULL;
     neuv_status s = NEUV_OK;
     if (!sh || !md || !ms || !os) { s = error_nomem("the shapes"); goto done; }
+    double all_faces = 0;
+    for (int i = 0; i < n; i++) all_faces += meshes[i] ? meshes[i]->nf : 0;
+    char what[48];
+    snprintf(what, sizeof what, n == 1 ? "the %d shape" : "the %d shapes", n);
+    if ((s = memory_check_training(all_faces, o.max_memory_mb, what,
+                                   "train on fewer or simplified shapes (neuv remesh --simplify) or raise the budget "
+                                   "(--max-memory MIB; library: max_memory_mb)")) != NEUV_OK)
+        goto done;
     for (int i = 0; i < n && s == NEUV_OK; i++) {
         log_progress("operators", (double)i / n, "shape %d of %d", i + 1, n);
         if (!meshes[i] || meshes[i]->nf == 0) s = error_set(NEUV_ERR_INPUT, "shape %d has no faces", i + 1);
