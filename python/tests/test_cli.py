@@ -138,7 +138,12 @@ def test_category_model_from_python_applied_by_cli(cli, tmp_path):
         "--no-cache", "--threads", "1", "--quiet")
     assert not neuv.Model.load(tmp_path / "tuned.neuv").is_category
     vmapping, indices, uvs = neuv.unwrap(V, F, model=tmp_path / "tuned.neuv", use_cache=False, threads=1)
-    np.testing.assert_allclose(uvs, fine, atol=1e-9)
+    # The networks are float32 and evaluated here chart by chart, in training over
+    # every vertex at once: OpenBLAS may round the last bit of a row differently in
+    # another batch, and a chart's head (weights up to ~300 on this tiny torus)
+    # amplifies it. Measured 1.3e-6 at most; 1e-5 is a hundredth of a texel at
+    # 1024 px, far below anything a texture shows, and far above a real change.
+    np.testing.assert_allclose(uvs, fine, rtol=0, atol=1e-5)
     # What does not apply to the model's kind raises, as the CLI refuses it.
     with pytest.raises(neuv.Error, match="resolution"):
         neuv.unwrap(V, F, model=tuned, resolution=512)
