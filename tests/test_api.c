@@ -422,7 +422,11 @@ static void test_models(void)
     CHECK(neuv_atlas_get_report(a, &ra) == NEUV_OK && neuv_atlas_get_report(b, &rb) == NEUV_OK);
     CHECK_INT(rb.from_model, 1);
     CHECK_INT(rb.metrics.flipped, 0);
-    CHECK_NEAR(rb.metrics.qce_mean, ra.metrics.qce_mean, 1e-9);
+    /* The float32 networks evaluated chart by chart here, over every vertex at
+     * once in training: OpenBLAS may round a row's last bit differently in
+     * another batch (2.2e-9 of qce_mean measured with OPENBLAS_CORETYPE=Haswell,
+     * 0 with the default kernel). */
+    CHECK_NEAR(rb.metrics.qce_mean, ra.metrics.qce_mean, 1e-7);
     neuv_model_free(model);
     remove(file);
     neuv_atlas_destroy(a);
