@@ -207,8 +207,9 @@ static int footprint_copy(const footprint *in, footprint *out)
  * Heuristics tried side by side (pack_try_heuristics): this is heuristic
  * `rank`, and first_fit (NULL alone) the lowest rank known to fit; once it is
  * below rank this attempt cannot be the one kept and gives up (returns 0).
- * The shapes cache is then shared: every access to it is in one critical
- * section, and pc->g already equals g. */
+ * The caller has made the shapes cache the one of scale g (pc->g == g); it
+ * may be shared by attempts side by side: every access is in one critical
+ * section. */
 static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic *hs, double g, placement *pl,
                         double *frac_placed, int rank, const int *first_fit)
 {
@@ -216,7 +217,6 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
     occupancy occ;
     double *q = mem_alloc(sizeof *q * 2 * (size_t)(P->max_verts > 0 ? P->max_verts : 1));
     if (!q || occupancy_init(&occ, R, pad) != 0) { mem_free(q); return -1; }
-    if (pc->g != g) pack_cache_reset(pc, g);
     double placed = 0, total = 0;
     for (int i = 0; i < P->ncharts; i++) {
         const chart_info *c = &P->ch[i];
@@ -517,8 +517,8 @@ static int pack_heuristic_count(int ncharts)
 /* The first of heuristics 0..nh-1 that fits at scale g, as if they were
  * tried one after the other until one fits: returns 1 with its placement in
  * pl, or 0 with *frac the most any of them placed, or -1 on no memory.
- * With more than one OpenMP thread they run side by side (pl_h: nh x
- * ncharts placements of scratch), each giving up once a heuristic before it
+ * With pl_h (nh x ncharts placements of scratch, made only where there
+ * are threads to use it) they run side by side, each giving up once a heuristic before it
  * has fitted, and the result is the same as one after the other: every
  * heuristic before the first fit runs to its end. */
 static int pack_try_heuristics(const pack_ctx *P, pack_cache *pc, int nh, double g, placement *pl, placement *pl_h,
@@ -526,7 +526,7 @@ static int pack_try_heuristics(const pack_ctx *P, pack_cache *pc, int nh, double
 {
     *frac = 0;
     if (pc->g != g) pack_cache_reset(pc, g);
-    if (nh <= 1 || !pl_h || omp_get_max_threads() <= 1 || omp_in_parallel()) {
+    if (nh <= 1 || !pl_h) {
         int rc = 0;
         for (int h = 0; h < nh && rc == 0; h++) {
             double fh;
@@ -593,8 +593,8 @@ static void polish_order(const pack_ctx *P, rng *r, chart_order *co, int *order)
     for (int c = 0; c < P->ncharts; c++) order[c] = co[c].id;
 }
 
-/* With two threads (pl2: a second placement buffer, NULL for one thread)
- * the try after the current one runs beside it as if the current one
+/* With pl2 (a second placement buffer, made only where there are threads
+ * to use it) the try after the current one runs beside it as if the current one
  * missed, which most do; when the current one fits, the try beside it is
  * run again from the new state. The orders come from the generator in the
  * same sequence either way, so the result is the one-by-one result. */
@@ -606,7 +606,7 @@ static int pack_polish(pack_ctx *P, pack_cache *pc, double *g, placement *pl, pl
     chart_order *co = mem_alloc(sizeof *co * (size_t)P->ncharts);
     int *orders = mem_alloc(sizeof *orders * 2 * (size_t)P->ncharts);
     if (!co || !orders) { mem_free(co); mem_free(orders); return -1; }
-    int side = pl2 && omp_get_max_threads() > 1 && !omp_in_parallel();
+    int side = pl2 != NULL;
     pack_ctx Pk[2] = {*P, *P};
     Pk[0].sorted[order_shuffled] = orders;
     Pk[1].sorted[order_shuffled] = orders + P->ncharts;
@@ -692,8 +692,8 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     if (!cache.t) { st = error_nomem("atlas packing"); goto done; }
     pl = mem_calloc((size_t)ncharts + 1, sizeof *pl);
     best_pl = mem_calloc((size_t)ncharts + 1, sizeof *best_pl);
-    /* Scratch for heuristics tried side by side (none on one thread). */
-    if (omp_get_max_threads() > 1 && pack_heuristic_count(ncharts) > 1) {
+    /* Scratch for tries side by side: none on one thread, or inside a parallel region. */
+    if (omp_get_max_threads() > 1 && !omp_in_parallel() && pack_heuristic_count(ncharts) > 1) {
         pl_h = mem_calloc((size_t)pack_heuristic_count(ncharts) * ncharts + 1, sizeof *pl_h);
         if (!pl_h) { st = error_nomem("atlas packing"); goto done; }
     }
