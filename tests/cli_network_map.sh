@@ -46,6 +46,10 @@ PYEOF
 #   genus2     1.000, 1.018 / 0.646, 1.020 / 0.348 (19 of 25 charts), -
 #   sphere     1.000, 1.029 / 1.000, 1.030 / 1.000, 1.037
 #   bent-capsule 21: 1.000, 1.054 / 1.000, 1.055
+# genus2's ratio moves with OpenBLAS's kernel (the last bits of every product
+# change the trained networks): 1.018 with the default kernel, 1.070 (area
+# 0.977) with OPENBLAS_CORETYPE=Haswell, so its bound is 1.09; what the
+# networks before the fold barrier fail on genus2 is the area (0.646).
 run_shape() { # name bounds... shape args
   local name="$1" min_area="$2" max_ratio="$3"; shift 3
   "$NEUV" shape "$@" -o "$TMP/$name.obj" --quiet || { bad "shape $* failed"; return; }
@@ -55,7 +59,7 @@ run_shape() { # name bounds... shape args
   check "$TMP/$name.json" "$TMP/$name-eval.json" "$min_area" "$max_ratio" "$name"
 }
 run_shape cube 0.95 1.03 cube
-run_shape genus2 0.95 1.035 genus2
+run_shape genus2 0.95 1.09 genus2
 run_shape sphere 0.95 1.045 sphere
 run_shape bent21 0.95 1.075 bent-capsule --member 21
 
