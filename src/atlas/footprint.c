@@ -74,49 +74,57 @@ int footprint_rasterize(const double *p, const int *tri, int ntri, int w, int h,
     return 0;
 }
 
-int footprint_dilate(const footprint *in, int r, footprint *out)
-{
-    int w = in->w + 2 * r, h = in->h + 2 * r;
-    footprint tmp;
-    memset(out, 0, sizeof *out); /* empty on failure, so footprint_free is safe */
-    if (footprint_alloc(&tmp, w, in->h) != 0) return -1;
-    if (footprint_alloc(out, w, h) != 0) { footprint_free(&tmp); return -1; }
-    /* Separable: a square structuring element is a row max then a column max. */
-    for (int j = 0; j < in->h; j++) {
-        const unsigned char *src = in->bits + (size_t)j * in->w;
-        unsigned char *dst = tmp.bits + (size_t)j * w;
-        for (int i = 0; i < in->w; i++)
-            if (src[i]) memset(dst + i, 1, (size_t)(2 * r + 1));
-    }
-    for (int j = 0; j < in->h; j++) {
-        const unsigned char *src = tmp.bits + (size_t)j * w;
-        for (int d = 0; d <= 2 * r; d++) {
-            unsigned char *dst = out->bits + (size_t)(j + d) * w;
-            for (int i = 0; i < w; i++) dst[i] |= src[i];
-        }
-    }
-    footprint_free(&tmp);
-    return 0;
-}
-
 int footprint_rotate(const footprint *in, int k, footprint *out)
 {
     k &= 3;
     int w = in->w, h = in->h;
     int ow = (k & 1) ? h : w, oh = (k & 1) ? w : h;
     if (footprint_alloc(out, ow, oh) != 0) return -1;
-    for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) {
-            if (!in->bits[(size_t)j * w + i]) continue;
-            int oi, oj;
-            switch (k) {
-            case 0: oi = i; oj = j; break;
-            case 1: oi = h - 1 - j; oj = i; break;
-            case 2: oi = w - 1 - i; oj = h - 1 - j; break;
-            default: oi = j; oj = w - 1 - i; break;
-            }
-            out->bits[(size_t)oj * ow + oi] = 1;
+    const unsigned char *src = in->bits;
+    unsigned char *dst = out->bits;
+    /* Pixel (i, j) goes to (oi, oj) = k 1: (h-1-j, i), 2: (w-1-i, h-1-j), 3: (j, w-1-i). */
+    if (k == 0) {
+        memcpy(dst, src, (size_t)w * h);
+    } else if (k == 2) {
+        for (int j = 0; j < h; j++) {
+            const unsigned char *row = src + (size_t)j * w;
+            unsigned char *orow = dst + (size_t)(h - 1 - j) * w;
+            for (int i = 0; i < w; i++) orow[w - 1 - i] = row[i];
         }
+    } else {
+        /* A transpose (with one axis reversed), in 32 by 32 tiles so that the
+         * column reads stay in cache: k 1: (i, j) -> (h-1-j, i); k 3: (j, w-1-i). */
+        enum { tile = 32 };
+        for (int j0 = 0; j0 < h; j0 += tile)
+            for (int i0 = 0; i0 < w; i0 += tile) {
+                int j1 = j0 + tile < h ? j0 + tile : h, i1 = i0 + tile < w ? i0 + tile : w;
+                for (int j = j0; j < j1; j++) {
+                    const unsigned char *row = src + (size_t)j * w;
+                    if (k == 1)
+                        for (int i = i0; i < i1; i++) dst[(size_t)i * ow + (h - 1 - j)] = row[i];
+                    else
+                        for (int i = i0; i < i1; i++) dst[(size_t)(w - 1 - i) * ow + j] = row[i];
+                }
+            }
+    }
+    return 0;
+}
+
+/* Appends run [a, b] to the spans (capacity *cap, doubled when full). Returns 0 or -1. */
+static int spans_push(footprint_spans *s, int *cap, int a, int b)
+{
+    if (s->count == *cap) {
+        int nc = *cap * 2;
+        int *x0 = mem_realloc(s->x0, sizeof(int) * (size_t)nc);
+        if (x0) s->x0 = x0;
+        int *x1 = x0 ? mem_realloc(s->x1, sizeof(int) * (size_t)nc) : NULL;
+        if (x1) s->x1 = x1;
+        if (!x0 || !x1) return -1;
+        *cap = nc;
+    }
+    s->x0[s->count] = a;
+    s->x1[s->count] = b;
+    s->count++;
     return 0;
 }
 
@@ -124,33 +132,26 @@ int footprint_to_spans(const footprint *in, footprint_spans *out)
 {
     memset(out, 0, sizeof *out);
     out->w = in->w; out->h = in->h;
-    int n = 0;
-    for (int j = 0; j < in->h; j++) {
-        const unsigned char *row = in->bits + (size_t)j * in->w;
-        for (int i = 0; i < in->w; i++)
-            if (row[i] && (i == 0 || !row[i - 1])) n++;
-    }
+    int cap = 2 * (in->h > 0 ? in->h : 1);
     out->row_first = mem_alloc(sizeof(int) * (size_t)(in->h + 1));
     out->row_width = mem_alloc(sizeof(int) * (size_t)(in->h > 0 ? in->h : 1));
-    out->x0 = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
-    out->x1 = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    out->x0 = mem_alloc(sizeof(int) * (size_t)cap);
+    out->x1 = mem_alloc(sizeof(int) * (size_t)cap);
     if (!out->row_first || !out->row_width || !out->x0 || !out->x1) { footprint_spans_free(out); return -1; }
-    n = 0;
     for (int j = 0; j < in->h; j++) {
-        const unsigned char *row = in->bits + (size_t)j * in->w;
-        out->row_first[j] = n;
+        const unsigned char *row = in->bits + (size_t)j * in->w, *end = row + in->w;
+        out->row_first[j] = out->count;
         out->row_width[j] = 0;
-        for (int i = 0; i < in->w;) {
-            if (!row[i]) { i++; continue; }
-            int e = i;
-            while (e + 1 < in->w && row[e + 1]) e++;
-            out->x0[n] = i; out->x1[n] = e; n++;
-            if (e - i + 1 > out->row_width[j]) out->row_width[j] = e - i + 1;
-            i = e + 1;
+        /* Runs found with memchr (covered pixels are 1, free ones 0). */
+        for (const unsigned char *a = memchr(row, 1, (size_t)in->w); a;) {
+            const unsigned char *b = memchr(a, 0, (size_t)(end - a));
+            if (!b) b = end;
+            if (spans_push(out, &cap, (int)(a - row), (int)(b - row) - 1) != 0) { footprint_spans_free(out); return -1; }
+            if (b - a > out->row_width[j]) out->row_width[j] = (int)(b - a);
+            a = b < end ? memchr(b, 1, (size_t)(end - b)) : NULL;
         }
     }
-    out->row_first[in->h] = n;
-    out->count = n;
+    out->row_first[in->h] = out->count;
     /* Wide rows first: a blocked wide span lets the search jump far. */
     out->row_order = mem_alloc(sizeof(int) * (size_t)(in->h > 0 ? in->h : 1));
     if (!out->row_order) { footprint_spans_free(out); return -1; }

@@ -25,9 +25,6 @@ typedef struct footprint_spans {
  * Outputs: out, allocated here (footprint_free).
  * Returns 0, or -1 on allocation failure. */
 int footprint_rasterize(const double *p, const int *tri, int ntri, int w, int h, footprint *out);
-/* Dilation by a (2r+1)-pixel square: out is (w+2r) by (h+2r), pixel (i,j) of
- * in lands on (i+r, j+r). Returns 0, or -1 on allocation failure. */
-int footprint_dilate(const footprint *in, int r, footprint *out);
 /* Rotation by k quarter turns counter-clockwise (y up): pixel (i,j) goes to
  * (h-1-j, i) for k = 1, i.e. the map (x,y) -> (h-y, x) of the pixel square.
  * Returns 0, or -1 on allocation failure. */

@@ -36,16 +36,29 @@ static int highest_taken(const uint64_t *row, int lo, int hi)
 static int row_free_run(const occupancy *o, int y)
 {
     const uint64_t *row = row_of(o, y);
-    int best = 0, run = 0;
+    int best = 0, run = 0; /* run: free pixels ending at the current position */
     for (int w = 0; w < o->words; w++) {
-        uint64_t m = row[w];
         int bits = (w == o->words - 1 && (o->size & 63)) ? (o->size & 63) : 64;
-        if (m == 0) { run += bits; if (run > best) best = run; continue; }
-        if (~m == 0) { run = 0; continue; }
-        for (int b = 0; b < bits; b++) {
-            if (m >> b & 1) run = 0;
-            else if (++run > best) best = run;
+        uint64_t m = row[w];
+        if (bits < 64) m |= ~(uint64_t)0 << bits; /* past the atlas: taken */
+        if (m == 0) { run += 64; if (run > best) best = run; continue; }
+        /* Free bits below the lowest taken one continue the run. */
+        int low = __builtin_ctzll(m);
+        if (run + low > best) best = run + low;
+        /* Runs of free bits between taken ones: each is the zeros above a taken bit. */
+        uint64_t free = ~m;
+        free &= ~(uint64_t)0 << low; /* the low run is counted */
+        while (free) {
+            int a = __builtin_ctzll(free);
+            uint64_t rest = ~free >> a; /* taken bits from a up */
+            int len = rest ? __builtin_ctzll(rest) : 64 - a;
+            if (a + len == 64) break; /* the run reaches the word's top: carried on */
+            if (len > best) best = len;
+            free &= len + a >= 64 ? 0 : ~(uint64_t)0 << (a + len);
         }
+        /* Free bits above the highest taken one start the next run. */
+        run = __builtin_clzll(m);
+        if (run > best) best = run;
     }
     return best;
 }
@@ -103,10 +116,13 @@ int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int 
     int ylast = o->size - s->h;
     if (y_end - s->h < ylast) ylast = y_end - s->h;
     for (int y = o->first_open; y <= ylast; y++) {
-        /* Cheap rejection: some footprint row is wider than any free run of its atlas row. */
+        /* Cheap rejection: some footprint row is wider than any free run of its
+         * atlas row (widest rows first: they are the likeliest to fail). */
         int ok = 1;
-        for (int r = 0; r < s->h; r++)
+        for (int t = 0; t < s->h; t++) {
+            int r = s->row_order[t];
             if (s->row_width[r] > o->free_run[y + r]) { ok = 0; break; }
+        }
         if (!ok) continue;
         int x = 0, xlast = o->size - s->w;
         /* Leapfrog over the rows (widest first, cyclically): each row moves x
@@ -123,24 +139,20 @@ int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int 
     return 0;
 }
 
-void occupancy_mark(occupancy *o, const footprint *f, int x, int y)
+void occupancy_mark(occupancy *o, const footprint_spans *s, int x, int y, int pad)
 {
-    for (int j = 0; j < f->h; j++) {
-        int ay = y + j;
-        if (ay < 0 || ay >= o->size) continue;
-        const unsigned char *src = f->bits + (size_t)j * f->w;
-        uint64_t *row = row_of(o, ay);
-        for (int i = 0; i < f->w;) {
-            if (!src[i]) { i++; continue; }
-            int e = i;
-            while (e + 1 < f->w && src[e + 1]) e++;
-            int lo = x + i, hi = x + e;
+    /* The square grown around each span is its run widened by pad on rows
+     * r - pad .. r + pad: their union is the dilated footprint. */
+    for (int r = 0; r < s->h; r++)
+        for (int k = s->row_first[r]; k < s->row_first[r + 1]; k++) {
+            int lo = x + s->x0[k] - pad, hi = x + s->x1[k] + pad;
             if (lo < 0) lo = 0;
             if (hi > o->size - 1) hi = o->size - 1;
-            if (lo <= hi) set_range(row, lo, hi);
-            i = e + 1;
+            if (lo > hi) continue;
+            for (int ay = y + r - pad; ay <= y + r + pad; ay++)
+                if (ay >= 0 && ay < o->size) set_range(row_of(o, ay), lo, hi);
         }
-        o->free_run[ay] = row_free_run(o, ay);
-    }
+    for (int ay = y - pad; ay < y + s->h + pad; ay++)
+        if (ay >= 0 && ay < o->size) o->free_run[ay] = row_free_run(o, ay);
     while (o->first_open < o->size && o->free_run[o->first_open] == 0) o->first_open++;
 }

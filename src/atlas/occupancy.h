@@ -23,9 +23,10 @@ void occupancy_free(occupancy *o);
 /* Lowest-then-leftmost (y, then x) position where every span of s lands on
  * free pixels, with y + s->h <= y_end. Returns 1 and sets *x, *y when found. */
 int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int *x, int *y);
-/* Marks the covered pixels of f placed with its pixel (0,0) at (x, y)
- * (parts outside the atlas are ignored). */
-void occupancy_mark(occupancy *o, const footprint *f, int x, int y);
+/* Marks the pixels of s placed with its pixel (0,0) at (x, y), grown by a
+ * (2 pad + 1)-pixel square (the padding: every pixel within pad of a covered
+ * one, in x and in y); parts outside the atlas are ignored. */
+void occupancy_mark(occupancy *o, const footprint_spans *s, int x, int y, int pad);
 /* 1 when pixel (x, y) is taken. */
 int occupancy_get(const occupancy *o, int x, int y);
 

@@ -1,7 +1,6 @@
 #include "atlas/pack.h"
 
 #include <math.h>
-#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -191,32 +190,17 @@ static void pack_cache_reset(pack_cache *pc, double g)
     pc->g = g;
 }
 
-static int footprint_copy(const footprint *in, footprint *out)
-{
-    out->w = in->w;
-    out->h = in->h;
-    out->bits = mem_alloc((size_t)in->w * in->h + 1);
-    if (!out->bits) return -1;
-    memcpy(out->bits, in->bits, (size_t)in->w * in->h);
-    return 0;
-}
-
 /* One packing at global scale g (pixels per world unit). Returns 1 when all
  * charts fit (pl filled), 0 when one does not (*frac_placed: share of the
- * charts' box area placed so far), -1 on allocation failure.
- * Heuristics tried side by side (pack_try_heuristics): this is heuristic
- * `rank`, and first_fit (NULL alone) the lowest rank known to fit; once it is
- * below rank this attempt cannot be the one kept and gives up (returns 0).
- * The caller has made the shapes cache the one of scale g (pc->g == g); it
- * may be shared by attempts side by side: every access is in one critical
- * section. */
+ * charts' box area placed so far), -1 on allocation failure. */
 static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic *hs, double g, placement *pl,
-                        double *frac_placed, int rank, const int *first_fit)
+                        double *frac_placed)
 {
     const int R = P->resolution, pad = P->padding;
     occupancy occ;
     double *q = mem_alloc(sizeof *q * 2 * (size_t)(P->max_verts > 0 ? P->max_verts : 1));
     if (!q || occupancy_init(&occ, R, pad) != 0) { mem_free(q); return -1; }
+    if (pc->g != g) pack_cache_reset(pc, g);
     double placed = 0, total = 0;
     for (int i = 0; i < P->ncharts; i++) {
         const chart_info *c = &P->ch[i];
@@ -224,16 +208,13 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
     }
     int rc = 1;
     turn_shape scratch;
-    footprint best_fp;
+    /* The winning spans: a cache entry's, or taken over from a shape made
+     * over the budget. */
+    const footprint_spans *best_sp = NULL;
+    footprint_spans best_own;
     memset(&scratch, 0, sizeof scratch);
-    memset(&best_fp, 0, sizeof best_fp);
+    memset(&best_own, 0, sizeof best_own);
     for (int n = 0; n < P->ncharts && rc == 1; n++) {
-        if (first_fit) {
-            int ff;
-#pragma omp atomic read
-            ff = *first_fit;
-            if (ff < rank) { rc = 0; break; }
-        }
         int ci = P->sorted[hs->order][n];
         const chart_info *c = &P->ch[ci];
         if (c->f_end == c->f_begin) continue;
@@ -245,11 +226,9 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
                                    : c->fit_angle == 0 || (hs->turns == 1 && g * fmax(c->W, c->H) + 1 <= R - 2 * pad))
                 continue;
             turn_shape *t = &pc->t[(size_t)ci * (pack_turns_max + 1) + j];
-            int made_ok = 1;
-#pragma omp critical(neuv_pack_cache)
             if (!t->state) {
-                if (turn_shape_make(P, c, j, g, q, t) != 0) { turn_shape_clear(t); made_ok = 0; }
-                else if (pc->bytes + t->bytes > pc->budget) { /* over budget: use it now, keep nothing */
+                if (turn_shape_make(P, c, j, g, q, t) != 0) { turn_shape_clear(t); rc = -1; break; }
+                if (pc->bytes + t->bytes > pc->budget) { /* over budget: use it now, keep nothing */
                     scratch = *t;
                     memset(t, 0, sizeof *t);
                     t = &scratch;
@@ -257,7 +236,6 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
                     pc->bytes += t->bytes;
                 }
             }
-            if (!made_ok) { rc = -1; break; }
             if (t->state == 2) { if (t == &scratch) turn_shape_clear(&scratch); continue; }
             int won = -1;
             for (int k = 0; k < 4; k++) {
@@ -278,25 +256,25 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
             }
             if (won >= 0) {
                 best_k = won; best_j = j; bw = t->w; bh = t->h;
-                footprint_free(&best_fp);
-                if (footprint_copy(&t->fp[won], &best_fp) != 0) rc = -1;
+                footprint_spans_free(&best_own);
+                if (t == &scratch) {
+                    best_own = scratch.sp[won];
+                    memset(&scratch.sp[won], 0, sizeof scratch.sp[won]);
+                    best_sp = &best_own;
+                } else {
+                    best_sp = &t->sp[won];
+                }
             }
             if (t == &scratch) turn_shape_clear(&scratch);
         }
         if (rc == 1 && best_k < 0) rc = 0;
         if (rc == 1) {
-            if (pad > 0) {
-                footprint dil;
-                if (footprint_dilate(&best_fp, pad, &dil) != 0) rc = -1;
-                else occupancy_mark(&occ, &dil, bx - pad, by - pad);
-                footprint_free(&dil);
-            } else {
-                occupancy_mark(&occ, &best_fp, bx, by);
-            }
+            occupancy_mark(&occ, best_sp, bx, by, pad);
             pl[ci].x = bx; pl[ci].y = by; pl[ci].k = best_k; pl[ci].w = bw; pl[ci].h = bh; pl[ci].j = best_j;
             placed += (g * c->W + 1) * (g * c->H + 1);
         }
-        footprint_free(&best_fp);
+        footprint_spans_free(&best_own);
+        best_sp = NULL;
     }
     occupancy_free(&occ);
     mem_free(q);
@@ -514,61 +492,6 @@ static int pack_heuristic_count(int ncharts)
     return ncharts > 1000 ? 1 : ncharts > 300 ? 4 : PACK_HEURISTICS;
 }
 
-/* The first of heuristics 0..nh-1 that fits at scale g, as if they were
- * tried one after the other until one fits: returns 1 with its placement in
- * pl, or 0 with *frac the most any of them placed, or -1 on no memory.
- * With pl_h (nh x ncharts placements of scratch, made only where there
- * are threads to use it) they run side by side, each giving up once a heuristic before it
- * has fitted, and the result is the same as one after the other: every
- * heuristic before the first fit runs to its end. */
-static int pack_try_heuristics(const pack_ctx *P, pack_cache *pc, int nh, double g, placement *pl, placement *pl_h,
-                               double *frac, int *attempts)
-{
-    *frac = 0;
-    if (pc->g != g) pack_cache_reset(pc, g);
-    if (nh <= 1 || !pl_h) {
-        int rc = 0;
-        for (int h = 0; h < nh && rc == 0; h++) {
-            double fh;
-            rc = pack_attempt(P, pc, &heuristics[h], g, pl, &fh, 0, NULL);
-            ++*attempts;
-            if (fh > *frac) *frac = fh;
-        }
-        return rc;
-    }
-    int rc_h[PACK_HEURISTICS];
-    double frac_h[PACK_HEURISTICS];
-    int first_fit = nh;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int h = 0; h < nh; h++) {
-        int ff;
-#pragma omp atomic read
-        ff = first_fit;
-        rc_h[h] = 0;
-        frac_h[h] = 0;
-        if (ff < h) continue;
-        rc_h[h] = pack_attempt(P, pc, &heuristics[h], g, pl_h + (size_t)h * P->ncharts, &frac_h[h], h, &first_fit);
-        if (rc_h[h] == 1) {
-#pragma omp critical(neuv_pack_first_fit)
-            if (h < first_fit) {
-#pragma omp atomic write
-                first_fit = h;
-            }
-        }
-    }
-    /* Attempts counted as one after the other would have made them. */
-    for (int h = 0; h < nh; h++) {
-        ++*attempts;
-        if (rc_h[h] < 0) return -1;
-        if (rc_h[h] == 1) {
-            memcpy(pl, pl_h + (size_t)h * P->ncharts, sizeof *pl * (size_t)P->ncharts);
-            return 1;
-        }
-        if (frac_h[h] > *frac) *frac = frac_h[h];
-    }
-    return 0;
-}
-
 /* Polish after the scale search (up to PACK_POLISH_MAX_CHARTS charts, where
  * a placement pass is cheap): the fixed orders are only four of the many
  * orders a few large charts can go in, and which one fits best is chaotic.
@@ -581,75 +504,42 @@ static int pack_try_heuristics(const pack_ctx *P, pack_cache *pc, int nh, double
 #define PACK_POLISH_MAX_CHARTS 64
 #define PACK_POLISH_TRIES 24
 
-/* The next shuffled order of the polish into order (co: scratch). */
-static void polish_order(const pack_ctx *P, rng *r, chart_order *co, int *order)
-{
-    for (int c = 0; c < P->ncharts; c++) {
-        const chart_info *ci = &P->ch[c];
-        co[c].key = ci->W * ci->H * exp(0.7 * rng_normal(r));
-        co[c].id = c;
-    }
-    qsort(co, (size_t)P->ncharts, sizeof *co, cmp_chart_order);
-    for (int c = 0; c < P->ncharts; c++) order[c] = co[c].id;
-}
-
-/* With pl2 (a second placement buffer, made only where there are threads
- * to use it) the try after the current one runs beside it as if the current one
- * missed, which most do; when the current one fits, the try beside it is
- * run again from the new state. The orders come from the generator in the
- * same sequence either way, so the result is the one-by-one result. */
-static int pack_polish(pack_ctx *P, pack_cache *pc, double *g, placement *pl, placement *pl2, placement *best_pl,
-                       int *attempts)
+static int pack_polish(pack_ctx *P, pack_cache *pc, double *g, placement *pl, placement *best_pl, int *attempts)
 {
     static const double steps[] = {0.03, 0.01, 0.004};
     if (P->ncharts < 2 || P->ncharts > PACK_POLISH_MAX_CHARTS) return 0;
     chart_order *co = mem_alloc(sizeof *co * (size_t)P->ncharts);
-    int *orders = mem_alloc(sizeof *orders * 2 * (size_t)P->ncharts);
-    if (!co || !orders) { mem_free(co); mem_free(orders); return -1; }
-    int side = pl2 != NULL;
-    pack_ctx Pk[2] = {*P, *P};
-    Pk[0].sorted[order_shuffled] = orders;
-    Pk[1].sorted[order_shuffled] = orders + P->ncharts;
-    placement *plk[2] = {pl, pl2};
+    if (!co) return -1;
     rng r;
     rng_seed(&r, 0x70ac4u);
-    int rc = 0, queued = 0; /* queued: orders + ncharts holds the next order, drawn but not yet tried */
+    int rc = 0;
     /* Two charts have two orders, and with the two placement sides and two
      * turn counts 8 distinct tries: more misses in a row only repeat them. */
     int tries = P->ncharts == 2 ? 8 : PACK_POLISH_TRIES;
     for (size_t s = 0; s < sizeof steps / sizeof steps[0] && rc == 0; s++) {
         for (int misses = 0; misses < tries && rc == 0;) {
-            if (queued) memcpy(orders, orders + P->ncharts, sizeof *orders * (size_t)P->ncharts);
-            else polish_order(P, &r, co, orders);
-            queued = 0;
-            int n = side && misses + 1 < tries ? 2 : 1;
-            if (n == 2) { polish_order(P, &r, co, orders + P->ncharts); queued = 1; }
-            double g_try = *g * (1 + steps[s]), frac[2];
-            int fit[2] = {0, 0};
-            if (pc->g != g_try) pack_cache_reset(pc, g_try);
-#pragma omp parallel for schedule(static, 1) num_threads(n) if (n > 1)
-            for (int k = 0; k < n; k++) {
-                int mk = misses + k;
-                pack_heuristic hs = {order_shuffled, mk % 2 ? choose_lowest_top : choose_lowest_bottom, mk % 3 ? 4 : 8};
-                fit[k] = pack_attempt(&Pk[k], pc, &hs, g_try, plk[k], &frac[k], 0, NULL);
+            for (int c = 0; c < P->ncharts; c++) {
+                const chart_info *ci = &P->ch[c];
+                co[c].key = ci->W * ci->H * exp(0.7 * rng_normal(&r));
+                co[c].id = c;
             }
-            for (int k = 0; k < n && rc == 0; k++) {
-                ++*attempts;
-                if (fit[k] < 0) rc = -1;
-                else if (fit[k] == 1) {
-                    *g = g_try;
-                    memcpy(best_pl, plk[k], sizeof *pl * (size_t)P->ncharts);
-                    misses = 0;
-                    if (k == 0) break; /* the try beside it assumed a miss: it stays queued */
-                } else {
-                    misses++;
-                }
-                if (k == 1) queued = 0; /* tried from the state it assumed */
+            qsort(co, (size_t)P->ncharts, sizeof *co, cmp_chart_order);
+            for (int c = 0; c < P->ncharts; c++) P->sorted[order_shuffled][c] = co[c].id;
+            pack_heuristic hs = {order_shuffled, misses % 2 ? choose_lowest_top : choose_lowest_bottom, misses % 3 ? 4 : 8};
+            double g_try = *g * (1 + steps[s]), frac;
+            int fit = pack_attempt(P, pc, &hs, g_try, pl, &frac);
+            ++*attempts;
+            if (fit < 0) rc = -1;
+            else if (fit == 1) {
+                *g = g_try;
+                memcpy(best_pl, pl, sizeof *pl * (size_t)P->ncharts);
+                misses = 0;
+            } else {
+                misses++;
             }
         }
     }
     mem_free(co);
-    mem_free(orders);
     return rc;
 }
 
@@ -682,7 +572,7 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     P.resolution = o.resolution;
     P.padding = o.padding;
     int *new_tri_uv = NULL, *old_of_new = NULL, nuv_new = 0;
-    placement *pl = NULL, *best_pl = NULL, *pl_h = NULL;
+    placement *pl = NULL, *best_pl = NULL;
     double *uv_new = NULL, *q = NULL;
     neuv_status st = pack_prepare(m, face_chart, ncharts, o.keep_scale, &P, &new_tri_uv, &old_of_new, &nuv_new);
     if (st != NEUV_OK) goto done;
@@ -692,11 +582,6 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     if (!cache.t) { st = error_nomem("atlas packing"); goto done; }
     pl = mem_calloc((size_t)ncharts + 1, sizeof *pl);
     best_pl = mem_calloc((size_t)ncharts + 1, sizeof *best_pl);
-    /* Scratch for tries side by side: none on one thread, or inside a parallel region. */
-    if (omp_get_max_threads() > 1 && !omp_in_parallel() && pack_heuristic_count(ncharts) > 1) {
-        pl_h = mem_calloc((size_t)pack_heuristic_count(ncharts) * ncharts + 1, sizeof *pl_h);
-        if (!pl_h) { st = error_nomem("atlas packing"); goto done; }
-    }
     uv_new = mem_alloc(sizeof *uv_new * 2 * ((size_t)nuv_new + 1));
     q = mem_alloc(sizeof *q * 2 * ((size_t)P.max_verts + 1));
     if (!pl || !best_pl || !uv_new || !q) { st = error_nomem("atlas packing"); goto done; }
@@ -719,7 +604,14 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
     int attempts = 0, steps = 0;
     for (;;) {
         double frac = 0;
-        int rc = pack_try_heuristics(&P, &cache, pack_heuristic_count(ncharts), g, pl, pl_h, &frac, &attempts);
+        int rc = 0;
+        int nh = pack_heuristic_count(ncharts);
+        for (int h = 0; h < nh && rc == 0; h++) {
+            double fh;
+            rc = pack_attempt(&P, &cache, &heuristics[h], g, pl, &fh);
+            attempts++;
+            if (fh > frac) frac = fh;
+        }
         if (rc < 0) { st = error_nomem("atlas packing"); goto done; }
         if (rc == 1) {
             lo = g;
@@ -745,7 +637,7 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
                        ncharts, o.resolution, o.padding);
         goto done;
     }
-    if (!o.quick && pack_polish(&P, &cache, &lo, pl, pl_h, best_pl, &attempts) != 0) {
+    if (!o.quick && pack_polish(&P, &cache, &lo, pl, best_pl, &attempts) != 0) {
         st = error_nomem("atlas packing");
         goto done;
     }
@@ -779,6 +671,6 @@ done:
     if (cache.t) pack_cache_reset(&cache, 0);
     mem_free(cache.t);
     pack_ctx_free(&P);
-    mem_free(new_tri_uv); mem_free(old_of_new); mem_free(pl); mem_free(best_pl); mem_free(pl_h); mem_free(uv_new); mem_free(q);
+    mem_free(new_tri_uv); mem_free(old_of_new); mem_free(pl); mem_free(best_pl); mem_free(uv_new); mem_free(q);
     return st;
 }

@@ -753,17 +753,17 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
     for (int pass = 0; pass < 2 && s == NEUV_OK; pass++) /* the charts that stay, then the ones that move */
         for (int c = 0; c < nc && s == NEUV_OK; c++) {
             if (move[c] != pass || span[c].count == 0) continue;
-            footprint fp, dil;
-            memset(&dil, 0, sizeof dil);
+            footprint fp;
+            footprint_spans fs;
+            memset(&fs, 0, sizeof fs);
             int x0, y0;
             if (chart_footprint(m, &span[c], order, first, c, R, q, lt, &fp, &x0, &y0)) { s = error_nomem("chart placement"); break; }
             int x = x0, y = y0, found = 1;
             double scale = 1;
             for (int tries = 0; pass == 1 && tries < 8; tries++) {
-                footprint_spans fs;
+                footprint_spans_free(&fs);
                 if (footprint_to_spans(&fp, &fs)) { s = error_nomem("chart placement"); break; }
                 found = occupancy_find(&occ, &fs, R, &x, &y);
-                footprint_spans_free(&fs);
                 if (found) break;
                 /* No room at this size: 0.8 of it about its centroid, and look again. */
                 double cx = 0, cy = 0;
@@ -783,10 +783,11 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
                     break;
                 }
             }
-            if (s) { footprint_free(&fp); break; }
-            if (found && footprint_dilate(&fp, pad, &dil) == 0) occupancy_mark(&occ, &dil, x - pad, y - pad);
+            if (s == NEUV_OK && found && pass == 0 && footprint_to_spans(&fp, &fs)) s = error_nomem("chart placement");
+            if (s) { footprint_free(&fp); footprint_spans_free(&fs); break; }
+            if (found) occupancy_mark(&occ, &fs, x, y, pad);
             footprint_free(&fp);
-            footprint_free(&dil);
+            footprint_spans_free(&fs);
             if (pass == 1 && found) {
                 double dx = (double)(x - x0) / R, dy = (double)(y - y0) / R;
                 for (int i = span[c].first; i < span[c].first + span[c].count; i++) {

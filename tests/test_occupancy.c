@@ -1,0 +1,166 @@
+/* The packer's pixel machinery against plain per-pixel versions: footprint
+ * turns and spans, marking with the padding, each row's longest free run,
+ * and the lowest-then-leftmost place a footprint fits. */
+#include "atlas/footprint.h"
+#include "atlas/occupancy.h"
+#include "check.h"
+#include "core/rng.h"
+
+static void random_footprint_uncropped(rng *r, int w, int h, footprint *f)
+{
+    f->w = w; f->h = h;
+    f->bits = calloc((size_t)w * h, 1);
+    for (int e = 0; e < 6; e++) {
+        double cx = rng_uniform(r) * w, cy = rng_uniform(r) * h;
+        double rx = 1 + rng_uniform(r) * w / 2, ry = 1 + rng_uniform(r) * h / 2;
+        unsigned char v = e < 4; /* the last two cut holes */
+        for (int j = 0; j < h; j++)
+            for (int i = 0; i < w; i++) {
+                double dx = (i + 0.5 - cx) / rx, dy = (j + 0.5 - cy) / ry;
+                if (dx * dx + dy * dy <= 1) f->bits[(size_t)j * w + i] = v;
+            }
+    }
+    f->bits[(size_t)(h / 2) * w + w / 2] = 1; /* never empty */
+}
+
+/* A random footprint: a few filled ellipses and holes, so rows have several
+ * runs, cropped to its covered pixels as a rasterized chart is. */
+static void random_footprint(rng *r, int w, int h, footprint *f)
+{
+    footprint full;
+    random_footprint_uncropped(r, w, h, &full);
+    int x0 = w, x1 = -1, y0 = h, y1 = -1;
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            if (full.bits[(size_t)j * w + i]) {
+                if (i < x0) x0 = i;
+                if (i > x1) x1 = i;
+                if (j < y0) y0 = j;
+                if (j > y1) y1 = j;
+            }
+    f->w = x1 - x0 + 1; f->h = y1 - y0 + 1;
+    f->bits = malloc((size_t)f->w * f->h);
+    for (int j = 0; j < f->h; j++) memcpy(f->bits + (size_t)j * f->w, full.bits + (size_t)(y0 + j) * w + x0, (size_t)f->w);
+    free(full.bits);
+}
+
+static void test_rotate_and_spans(rng *r)
+{
+    int bad_rot = 0, bad_spans = 0;
+    for (int trial = 0; trial < 40; trial++) {
+        footprint f;
+        int w = 1 + (int)(rng_uniform(r) * 90), h = 1 + (int)(rng_uniform(r) * 70);
+        random_footprint_uncropped(r, w, h, &f); /* empty border rows and columns too */
+        for (int k = 0; k < 4; k++) {
+            footprint g;
+            CHECK(footprint_rotate(&f, k, &g) == 0);
+            CHECK_INT(g.w, k & 1 ? h : w);
+            for (int j = 0; j < h; j++)
+                for (int i = 0; i < w; i++) {
+                    int oi = k == 0 ? i : k == 1 ? h - 1 - j : k == 2 ? w - 1 - i : j;
+                    int oj = k == 0 ? j : k == 1 ? i : k == 2 ? h - 1 - j : w - 1 - i;
+                    bad_rot += g.bits[(size_t)oj * g.w + oi] != f.bits[(size_t)j * w + i];
+                }
+            footprint_free(&g);
+        }
+        footprint_spans s;
+        CHECK(footprint_to_spans(&f, &s) == 0);
+        long covered = 0;
+        for (int j = 0; j < h; j++) {
+            int widest = 0, n = s.row_first[j];
+            for (int i = 0; i < w; i++) {
+                if (!f.bits[(size_t)j * w + i] || (i > 0 && f.bits[(size_t)j * w + i - 1])) continue;
+                int e = i;
+                while (e + 1 < w && f.bits[(size_t)j * w + e + 1]) e++;
+                bad_spans += n >= s.row_first[j + 1] || s.x0[n] != i || s.x1[n] != e;
+                n++;
+                if (e - i + 1 > widest) widest = e - i + 1;
+                covered += e - i + 1;
+            }
+            bad_spans += n != s.row_first[j + 1] || s.row_width[j] != widest;
+        }
+        CHECK_INT(covered, footprint_count(&f));
+        for (int t = 1; t < h; t++) bad_spans += s.row_width[s.row_order[t - 1]] < s.row_width[s.row_order[t]];
+        footprint_spans_free(&s);
+        free(f.bits);
+    }
+    CHECK_INT(bad_rot, 0);
+    CHECK_INT(bad_spans, 0);
+}
+
+/* Longest run of free pixels of row y, pixel by pixel. */
+static int naive_free_run(const occupancy *o, int y)
+{
+    int best = 0, run = 0;
+    for (int x = 0; x < o->size; x++) {
+        run = occupancy_get(o, x, y) ? 0 : run + 1;
+        if (run > best) best = run;
+    }
+    return best;
+}
+
+static void test_mark_and_find(rng *r, int size, int border, int pad)
+{
+    occupancy o;
+    CHECK(occupancy_init(&o, size, border) == 0);
+    unsigned char *naive = calloc((size_t)size * size, 1);
+    for (int y = 0; y < size; y++)
+        for (int x = 0; x < size; x++)
+            naive[(size_t)y * size + x] = x < border || y < border || x >= size - border || y >= size - border;
+    int bad_mark = 0, bad_run = 0, bad_find = 0, found = 0;
+    for (int step = 0; step < 25; step++) {
+        footprint f;
+        random_footprint(r, 3 + (int)(rng_uniform(r) * size / 4), 3 + (int)(rng_uniform(r) * size / 4), &f);
+        footprint_spans s;
+        CHECK(footprint_to_spans(&f, &s) == 0);
+        /* Where it fits, pixel by pixel: every covered pixel free, inside the atlas. */
+        int bx = -1, by = -1;
+        for (int y = 0; y + f.h <= size && by < 0; y++)
+            for (int x = 0; x + f.w <= size && bx < 0; x++) {
+                int fits = 1;
+                for (int j = 0; j < f.h && fits; j++)
+                    for (int i = 0; i < f.w && fits; i++)
+                        fits = !f.bits[(size_t)j * f.w + i] || !naive[(size_t)(y + j) * size + x + i];
+                if (fits) { bx = x; by = y; }
+            }
+        int x, y, ok = occupancy_find(&o, &s, size, &x, &y);
+        bad_find += ok != (by >= 0) || (ok && (x != bx || y != by));
+        if (!ok) { x = (int)(rng_uniform(r) * size) - f.w / 2; y = (int)(rng_uniform(r) * size) - f.h / 2; }
+        else found++;
+        /* Marked with the padding, anywhere (partly outside the atlas too). */
+        occupancy_mark(&o, &s, x, y, pad);
+        for (int j = 0; j < f.h; j++)
+            for (int i = 0; i < f.w; i++) {
+                if (!f.bits[(size_t)j * f.w + i]) continue;
+                for (int dy = -pad; dy <= pad; dy++)
+                    for (int dx = -pad; dx <= pad; dx++) {
+                        int ax = x + i + dx, ay = y + j + dy;
+                        if (ax >= 0 && ay >= 0 && ax < size && ay < size) naive[(size_t)ay * size + ax] = 1;
+                    }
+            }
+        for (int yy = 0; yy < size; yy++) {
+            for (int xx = 0; xx < size; xx++) bad_mark += occupancy_get(&o, xx, yy) != naive[(size_t)yy * size + xx];
+            bad_run += o.free_run[yy] != naive_free_run(&o, yy);
+        }
+        footprint_spans_free(&s);
+        free(f.bits);
+    }
+    CHECK_INT(bad_mark, 0);
+    CHECK_INT(bad_run, 0);
+    CHECK_INT(bad_find, 0);
+    CHECK(found >= 5); /* the search was exercised on real fits, not only misses */
+    occupancy_free(&o);
+    free(naive);
+}
+
+int main(void)
+{
+    rng r;
+    rng_seed(&r, 7);
+    test_rotate_and_spans(&r);
+    /* Sizes on and off the 64-pixel word, with and without padding. */
+    test_mark_and_find(&r, 150, 2, 2);
+    test_mark_and_find(&r, 128, 0, 0);
+    test_mark_and_find(&r, 200, 1, 3);
+    return check_report("test_occupancy");
+}
