@@ -54,7 +54,7 @@ static int row_free_run(const occupancy *o, int y)
             int len = rest ? __builtin_ctzll(rest) : 64 - a;
             if (a + len == 64) break; /* the run reaches the word's top: carried on */
             if (len > best) best = len;
-            free &= len + a >= 64 ? 0 : ~(uint64_t)0 << (a + len);
+            free &= ~(uint64_t)0 << (a + len); /* a + len < 64 here */
         }
         /* Free bits above the highest taken one start the next run. */
         run = __builtin_clzll(m);
