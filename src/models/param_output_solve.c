@@ -3,6 +3,7 @@
 
 #include <cblas.h>
 #include <lapacke.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -62,16 +63,20 @@ static void normal_eq_free(normal_eq *q)
     memset(q, 0, sizeof *q);
 }
 
-static neuv_status normal_eq_init(normal_eq *q, int n)
+/* cap: rows buffered before they are added to A (0: A and g are filled
+ * otherwise, by vertex_eq_flush). */
+static neuv_status normal_eq_init(normal_eq *q, int n, int cap)
 {
     memset(q, 0, sizeof *q);
     q->n = n;
-    q->cap = 1024;
+    q->cap = cap;
     q->a = mem_calloc((size_t)n * n, sizeof(double));
     q->g = mem_calloc((size_t)n, sizeof(double));
-    q->rows = mem_calloc((size_t)q->cap * n, sizeof(double));
-    q->c = mem_calloc((size_t)q->cap, sizeof(double));
-    if (!q->a || !q->g || !q->rows || !q->c) { normal_eq_free(q); return error_nomem("output-layer solve"); }
+    if (cap > 0) {
+        q->rows = mem_calloc((size_t)q->cap * n, sizeof(double));
+        q->c = mem_calloc((size_t)q->cap, sizeof(double));
+    }
+    if (!q->a || !q->g || (cap > 0 && (!q->rows || !q->c))) { normal_eq_free(q); return error_nomem("output-layer solve"); }
     return NEUV_OK;
 }
 
@@ -114,6 +119,195 @@ typedef struct block {
     const int *faces, *verts;
     int nf, nv;
 } block;
+
+/* The Gauss-Newton systems of the output-layer solves, kept in vertex space.
+ * Every residual row is linear in the uv of at most three vertices: r·θ + c
+ * with r = (Σ_v a_v φ̂_v, Σ_v b_v φ̂_v) (u weights, then v weights), φ̂_v =
+ * (φ_v, 1). So Σ r rᵀ = [Φ̂ᵀ Muu Φ̂, Φ̂ᵀ Muv Φ̂; ·, Φ̂ᵀ Mvv Φ̂] with Muu =
+ * Σ a aᵀ, Muv = Σ a bᵀ, Mvv = Σ b bᵀ sparse over the mesh's vertex pairs,
+ * and −Σ r c = −(Φ̂ᵀ hu, Φ̂ᵀ hv), hu = Σ a c, hv = Σ b c. The rows' weights go
+ * into these sparse sums (a few numbers per row); the dense products cost
+ * about 6 V K² for a block of V vertices instead of the rows' 4 R K² (R ≈ 6 V
+ * rows: two per face, two per vertex, the barrier's), K = H + 1 the features. */
+typedef struct vertex_eq {
+    int nv;
+    int *start, *col;        /* CSR over vertices: each vertex's neighbours in its faces, itself included */
+    int *face_pos;           /* nf by 9: the entry of (t[i], t[j]) */
+    int *diag;               /* nv: the entry of (v, v) */
+    double *muu, *muv, *mvv; /* per entry */
+    double *hu, *hv;         /* nv */
+} vertex_eq;
+
+static void vertex_eq_free(vertex_eq *e)
+{
+    mem_free(e->start); mem_free(e->col); mem_free(e->face_pos); mem_free(e->diag);
+    mem_free(e->muu); mem_free(e->muv); mem_free(e->mvv); mem_free(e->hu); mem_free(e->hv);
+    memset(e, 0, sizeof *e);
+}
+
+static int int_cmp(const void *p, const void *q)
+{
+    int a = *(const int *)p, b = *(const int *)q;
+    return (a > b) - (a < b);
+}
+
+/* The vertex pairs that share a face, from nf faces `tri` over nv vertices. */
+static neuv_status vertex_eq_init(vertex_eq *e, int nv, int nf, const int *tri)
+{
+    memset(e, 0, sizeof *e);
+    e->nv = nv;
+    int *fstart = mem_calloc((size_t)nv + 1, sizeof(int)), *flist = mem_alloc(sizeof(int) * (3 * (size_t)nf + 1));
+    e->start = mem_calloc((size_t)nv + 1, sizeof(int));
+    e->face_pos = mem_alloc(sizeof(int) * (9 * (size_t)nf + 1));
+    e->diag = mem_alloc(sizeof(int) * ((size_t)nv + 1));
+    e->hu = mem_calloc((size_t)nv + 1, sizeof(double));
+    e->hv = mem_calloc((size_t)nv + 1, sizeof(double));
+    neuv_status s = NEUV_OK;
+    if (!fstart || !flist || !e->start || !e->face_pos || !e->diag || !e->hu || !e->hv) { s = error_nomem("output-layer solve"); goto done; }
+    /* faces of each vertex */
+    for (int f = 0; f < nf; f++)
+        for (int k = 0; k < 3; k++) fstart[tri[3 * f + k] + 1]++;
+    for (int v = 0; v < nv; v++) fstart[v + 1] += fstart[v];
+    {
+        int *fill = mem_alloc(sizeof(int) * ((size_t)nv + 1));
+        if (!fill) { s = error_nomem("output-layer solve"); goto done; }
+        memcpy(fill, fstart, sizeof(int) * (size_t)nv);
+        for (int f = 0; f < nf; f++)
+            for (int k = 0; k < 3; k++) flist[fill[tri[3 * f + k]]++] = f;
+        mem_free(fill);
+    }
+    /* neighbours: at most 3 per incident face, sorted and unique */
+    size_t cap = 0;
+    for (int v = 0; v < nv; v++) cap += 3 * (size_t)(fstart[v + 1] - fstart[v]) + 1;
+    e->col = mem_alloc(sizeof(int) * (cap + 1));
+    if (!e->col) { s = error_nomem("output-layer solve"); goto done; }
+    size_t nnz = 0;
+    for (int v = 0; v < nv; v++) {
+        size_t r0 = nnz;
+        e->col[nnz++] = v;
+        for (int k = fstart[v]; k < fstart[v + 1]; k++)
+            for (int j = 0; j < 3; j++) e->col[nnz++] = tri[3 * flist[k] + j];
+        qsort(e->col + r0, nnz - r0, sizeof(int), int_cmp);
+        size_t w = r0;
+        for (size_t k = r0; k < nnz; k++)
+            if (k == r0 || e->col[k] != e->col[w - 1]) e->col[w++] = e->col[k];
+        nnz = w;
+        if (nnz > INT_MAX) { s = error_nomem("output-layer solve"); goto done; }
+        e->start[v + 1] = (int)nnz;
+    }
+    e->muu = mem_calloc(nnz + 1, sizeof(double));
+    e->muv = mem_calloc(nnz + 1, sizeof(double));
+    e->mvv = mem_calloc(nnz + 1, sizeof(double));
+    if (!e->muu || !e->muv || !e->mvv) { s = error_nomem("output-layer solve"); goto done; }
+    for (int v = 0; v < nv; v++) {
+        const int *c = e->col + e->start[v];
+        e->diag[v] = e->start[v] + (int)((const int *)bsearch(&v, c, (size_t)(e->start[v + 1] - e->start[v]), sizeof(int), int_cmp) - c);
+    }
+    for (int f = 0; f < nf; f++)
+        for (int i = 0; i < 3; i++) {
+            int a = tri[3 * f + i];
+            const int *c = e->col + e->start[a];
+            size_t len = (size_t)(e->start[a + 1] - e->start[a]);
+            for (int j = 0; j < 3; j++) {
+                const int *hit = bsearch(&tri[3 * f + j], c, len, sizeof(int), int_cmp);
+                e->face_pos[9 * (size_t)f + 3 * i + j] = e->start[a] + (int)(hit - c);
+            }
+        }
+done:
+    mem_free(fstart); mem_free(flist);
+    if (s != NEUV_OK) vertex_eq_free(e);
+    return s;
+}
+
+/* Empties the sums of the block's vertices (verts). */
+static void vertex_eq_reset(vertex_eq *e, const int *verts, int n)
+{
+    for (int k = 0; k < n; k++) {
+        int v = verts[k];
+        size_t a = (size_t)e->start[v], len = (size_t)(e->start[v + 1] - e->start[v]);
+        memset(e->muu + a, 0, len * sizeof(double));
+        memset(e->muv + a, 0, len * sizeof(double));
+        memset(e->mvv + a, 0, len * sizeof(double));
+        e->hu[v] = e->hv[v] = 0;
+    }
+}
+
+/* A residual row over face f's vertices t: u weights a, v weights b, constant c. */
+static void vertex_eq_face_row(vertex_eq *e, int f, const int *t, const double a[3], const double b[3], double c)
+{
+    const int *pos = e->face_pos + 9 * (size_t)f;
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 3; j++) {
+            int p = pos[3 * i + j];
+            e->muu[p] += a[i] * a[j];
+            e->muv[p] += a[i] * b[j];
+            e->mvv[p] += b[i] * b[j];
+        }
+        e->hu[t[i]] += a[i] * c;
+        e->hv[t[i]] += b[i] * c;
+    }
+}
+
+/* A residual row on one vertex's u (comp 0) or v (comp 1): weight a, constant c. */
+static void vertex_eq_vertex_row(vertex_eq *e, int v, int comp, double a, double c)
+{
+    int p = e->diag[v];
+    if (comp == 0) { e->muu[p] += a * a; e->hu[v] += a * c; }
+    else { e->mvv[p] += a * a; e->hv[v] += a * c; }
+}
+
+enum { VERTEX_EQ_CHUNK = 128 };
+
+/* The normal equations (A upper triangle, g) of the block from the sums over
+ * its vertices, VERTEX_EQ_CHUNK vertices at a time. */
+static neuv_status vertex_eq_flush(const vertex_eq *e, const float *phi, int H, const int *verts, int n, normal_eq *q)
+{
+    int K = H + 1, N = q->n;
+    memset(q->a, 0, sizeof(double) * (size_t)N * N);
+    memset(q->g, 0, sizeof(double) * (size_t)N);
+    q->used = 0;
+    double *C = mem_alloc(sizeof(double) * VERTEX_EQ_CHUNK * (size_t)K * 4), *hc = mem_alloc(sizeof(double) * 2 * VERTEX_EQ_CHUNK);
+    int *chunk = mem_alloc(sizeof(int) * VERTEX_EQ_CHUNK);
+    if (!C || !hc || !chunk) { mem_free(C); mem_free(hc); mem_free(chunk); return error_nomem("output-layer solve"); }
+    double *Puu = C + VERTEX_EQ_CHUNK * (size_t)K, *Puv = Puu + VERTEX_EQ_CHUNK * (size_t)K, *Pvv = Puv + VERTEX_EQ_CHUNK * (size_t)K;
+    /* Vertices no row touches add nothing (on the faces split in four, the
+     * edge midpoints carry rows only where the fold barrier is active). */
+    for (int k = 0; k < n;) {
+        int m = 0;
+        for (; k < n && m < VERTEX_EQ_CHUNK; k++) {
+            int v = verts[k], used = e->hu[v] != 0 || e->hv[v] != 0;
+            for (int p = e->start[v]; p < e->start[v + 1] && !used; p++)
+                used = e->muu[p] != 0 || e->muv[p] != 0 || e->mvv[p] != 0;
+            if (used) chunk[m++] = v;
+        }
+        if (m == 0) break;
+        for (int r = 0; r < m; r++) {
+            int v = chunk[r];
+            double *c = C + (size_t)r * K, *pu = Puu + (size_t)r * K, *pm = Puv + (size_t)r * K, *pv = Pvv + (size_t)r * K;
+            const float *fv = phi + (size_t)v * H;
+            for (int i = 0; i < H; i++) c[i] = fv[i];
+            c[H] = 1;
+            memset(pu, 0, sizeof(double) * (size_t)K);
+            memset(pm, 0, sizeof(double) * (size_t)K);
+            memset(pv, 0, sizeof(double) * (size_t)K);
+            for (int p = e->start[v]; p < e->start[v + 1]; p++) {
+                const float *fw = phi + (size_t)e->col[p] * H;
+                double wu = e->muu[p], wm = e->muv[p], wv = e->mvv[p];
+                for (int i = 0; i < H; i++) { pu[i] += wu * fw[i]; pm[i] += wm * fw[i]; pv[i] += wv * fw[i]; }
+                pu[H] += wu; pm[H] += wm; pv[H] += wv;
+            }
+            hc[r] = e->hu[v];
+            hc[VERTEX_EQ_CHUNK + r] = e->hv[v];
+        }
+        cblas_dgemm(CblasRowMajor, CblasTrans, CblasNoTrans, K, K, m, 1.0, C, K, Puu, K, 1.0, q->a, N);
+        cblas_dgemm(CblasRowMajor, CblasTrans, CblasNoTrans, K, K, m, 1.0, C, K, Puv, K, 1.0, q->a + K, N);
+        cblas_dgemm(CblasRowMajor, CblasTrans, CblasNoTrans, K, K, m, 1.0, C, K, Pvv, K, 1.0, q->a + (size_t)K * N + K, N);
+        cblas_dgemv(CblasRowMajor, CblasTrans, m, K, -1.0, C, K, hc, 1, 1.0, q->g, 1);
+        cblas_dgemv(CblasRowMajor, CblasTrans, m, K, -1.0, C, K, hc + VERTEX_EQ_CHUNK, 1, 1.0, q->g + K, 1);
+    }
+    mem_free(C); mem_free(hc); mem_free(chunk);
+    return NEUV_OK;
+}
 
 /* z = φ̂ θ and uv = tanh(z) at the block's vertices (arrays indexed by vertex). */
 static void map_block(const float *phi, int H, const double *theta, const block *b, double *z, double *uv)
@@ -199,8 +393,8 @@ static double block_anchor(const block *b, const double *uv, const double *uv0, 
 /* The fold barrier's row for face f when it is active (σ det J < ε s̄²):
  * r = k (ε s̄² − σ det J) with k = sqrt(fold_weight w_f / s̄²), det J
  * linearized in the vertices' u, v and those through tanh as above. */
-static void fold_row(const param_solve_data *d, int f, const float *phi, int H, const double *z, const double *uv,
-                     double sg, double s2, normal_eq *q)
+static void fold_row(const param_solve_data *d, int f, const double *z, const double *uv, double sg, double s2,
+                     vertex_eq *q)
 {
     const int *t = d->tri + 3 * f;
     double wx[3], wy[3], J[4];
@@ -208,74 +402,61 @@ static void fold_row(const param_solve_data *d, int f, const float *phi, int H, 
     double det = sg * (J[0] * J[3] - J[1] * J[2]), gap = d->fold_eps * s2 - det;
     double fw = fold_weight_of(d, f);
     if (!(gap > 0) || !(s2 > 0) || !(fw > 0)) return;
-    double k = sqrt(d->fold_weight * fw / s2), *c, *r = normal_eq_row(q, &c);
-    int K = H + 1;
+    double k = sqrt(d->fold_weight * fw / s2), a[3], b[3];
     /* r(θ) ≈ gap − k σ ∇det·(θ − θ0): row −k σ ∇det, constant gap + k σ ∇det·θ0. */
     double cst = k * gap;
     for (int j = 0; j < 3; j++) {
         int v = t[j];
-        const float *p = phi + (size_t)v * H;
         double su = 1 - uv[2 * v] * uv[2 * v], sv = 1 - uv[2 * v + 1] * uv[2 * v + 1];
         double du = sg * (J[3] * wx[j] - J[2] * wy[j]) * su, dv = sg * (J[0] * wy[j] - J[1] * wx[j]) * sv;
-        for (int i = 0; i < H; i++) { r[i] -= k * du * p[i]; r[K + i] -= k * dv * p[i]; }
-        r[H] -= k * du; r[K + H] -= k * dv;
+        a[j] = -k * du;
+        b[j] = -k * dv;
         cst += k * (du * z[2 * v] + dv * z[2 * v + 1]);
     }
-    *c = cst;
+    vertex_eq_face_row(q, f, t, a, b, cst);
 }
 
-static void anchor_rows(const block *b, const float *phi, int H, const double *z, const double *uv, const double *uv0,
-                        const double *mv, double anchor, normal_eq *q);
+static void anchor_rows(const block *b, const double *z, const double *uv, const double *uv0, const double *mv,
+                        double anchor, vertex_eq *q);
 
-static void gauss_newton_rows(const param_solve_data *d, const block *b, const float *phi, int H, const double *z,
-                              const double *uv, const double *uv0, const double *mv, const int *sigma,
-                              const double *fold_s2, double anchor, normal_eq *q)
+static void gauss_newton_rows(const param_solve_data *d, const block *b, const double *z, const double *uv,
+                              const double *uv0, const double *mv, const int *sigma, const double *fold_s2,
+                              double anchor, vertex_eq *q)
 {
-    int K = H + 1;
     for (int k = 0; k < b->nf; k++) {
         int f = b->faces[k];
         double w = sqrt(d->face_w[f]), sg = sigma[d->fchart[f]];
-        if (fold_s2 && d->fold_weight > 0) fold_row(d, f, phi, H, z, uv, sg, fold_s2[d->fchart[f]], q);
+        if (fold_s2 && d->fold_weight > 0) fold_row(d, f, z, uv, sg, fold_s2[d->fchart[f]], q);
         if (!(w > 0)) continue;
         const int *t = d->tri + 3 * f;
-        double wx[3], wy[3], *c1, *c2;
+        double wx[3], wy[3], a1[3], a2[3], b1[3], b2[3], c1 = 0, c2 = 0;
         face_weights(d->frame_inv + 4 * (size_t)f, wx, wy);
-        double *r1 = normal_eq_row(q, &c1), *r2 = normal_eq_row(q, &c2);
         /* r1 = ∂u/∂x − σ ∂v/∂y, r2 = ∂u/∂y + σ ∂v/∂x */
         for (int j = 0; j < 3; j++) {
             int v = t[j];
-            const float *p = phi + (size_t)v * H;
             double su = 1 - uv[2 * v] * uv[2 * v], sv = 1 - uv[2 * v + 1] * uv[2 * v + 1];
             double ku = uv[2 * v] - su * z[2 * v], kv = uv[2 * v + 1] - sv * z[2 * v + 1];
-            double a1 = w * wx[j] * su, a2 = w * wy[j] * su, b1 = -sg * w * wy[j] * sv, b2 = sg * w * wx[j] * sv;
-            for (int i = 0; i < H; i++) {
-                r1[i] += a1 * p[i]; r2[i] += a2 * p[i];
-                r1[K + i] += b1 * p[i]; r2[K + i] += b2 * p[i];
-            }
-            r1[H] += a1; r2[H] += a2; r1[K + H] += b1; r2[K + H] += b2;
-            *c1 += w * wx[j] * ku - sg * w * wy[j] * kv;
-            *c2 += w * wy[j] * ku + sg * w * wx[j] * kv;
+            a1[j] = w * wx[j] * su; a2[j] = w * wy[j] * su; b1[j] = -sg * w * wy[j] * sv; b2[j] = sg * w * wx[j] * sv;
+            c1 += w * wx[j] * ku - sg * w * wy[j] * kv;
+            c2 += w * wy[j] * ku + sg * w * wx[j] * kv;
         }
+        vertex_eq_face_row(q, f, t, a1, b1, c1);
+        vertex_eq_face_row(q, f, t, a2, b2, c2);
     }
-    anchor_rows(b, phi, H, z, uv, uv0, mv, anchor, q);
+    anchor_rows(b, z, uv, uv0, mv, anchor, q);
 }
 
 /* The anchor's two rows per vertex, linearized through tanh. */
-static void anchor_rows(const block *b, const float *phi, int H, const double *z, const double *uv, const double *uv0,
-                        const double *mv, double anchor, normal_eq *q)
+static void anchor_rows(const block *b, const double *z, const double *uv, const double *uv0, const double *mv,
+                        double anchor, vertex_eq *q)
 {
-    int K = H + 1;
     for (int k = 0; k < b->nv; k++) {
         int v = b->verts[k];
         double w = sqrt(anchor * mv[v]);
         if (!(w > 0)) continue;
-        const float *p = phi + (size_t)v * H;
         for (int j = 0; j < 2; j++) {
-            double *c, *r = normal_eq_row(q, &c);
             double s = 1 - uv[2 * v + j] * uv[2 * v + j], kap = uv[2 * v + j] - s * z[2 * v + j];
-            for (int i = 0; i < H; i++) r[j * K + i] = w * s * p[i];
-            r[j * K + H] = w * s;
-            *c = w * (kap - uv0[2 * v + j]);
+            vertex_eq_vertex_row(q, v, j, w * s, w * (kap - uv0[2 * v + j]));
         }
     }
 }
@@ -303,11 +484,9 @@ static double block_energy_mips(const param_solve_data *d, const block *b, const
 /* Gauss-Newton rows of block_energy_mips (residuals r/sqrt(D), r the
  * Cauchy-Riemann pair, D = σ det J), linearized through tanh, and the
  * anchor's rows. Every face must be unfolded. */
-static void mips_rows(const param_solve_data *d, const block *b, const float *phi, int H, const double *z,
-                      const double *uv, const double *uv0, const double *mv, const int *sigma, double anchor,
-                      normal_eq *q)
+static void mips_rows(const param_solve_data *d, const block *b, const double *z, const double *uv, const double *uv0,
+                      const double *mv, const int *sigma, double anchor, vertex_eq *q)
 {
-    int K = H + 1;
     for (int k = 0; k < b->nf; k++) {
         int f = b->faces[k];
         if (!(d->face_w[f] > 0)) continue;
@@ -318,24 +497,23 @@ static void mips_rows(const param_solve_data *d, const block *b, const float *ph
         double D = sg * (J[0] * J[3] - J[1] * J[2]), rs = 1 / sqrt(D);
         double r[2] = {J[0] - sg * J[3], J[1] + sg * J[2]};
         for (int e = 0; e < 2; e++) {
-            double *c, *row = normal_eq_row(q, &c), cst = w * r[e] * rs;
+            double ga[3], gb[3], cst = w * r[e] * rs;
             for (int j = 0; j < 3; j++) {
                 int v = t[j];
-                const float *p = phi + (size_t)v * H;
                 double su = 1 - uv[2 * v] * uv[2 * v], sv = 1 - uv[2 * v + 1] * uv[2 * v + 1];
                 /* ∂r/∂u_v, ∂r/∂v_v and ∂D/∂u_v, ∂D/∂v_v */
                 double ru = e == 0 ? wx[j] : wy[j], rv = e == 0 ? -sg * wy[j] : sg * wx[j];
                 double Du = sg * (J[3] * wx[j] - J[2] * wy[j]), Dv = sg * (J[0] * wy[j] - J[1] * wx[j]);
                 double gu = w * (ru * rs - 0.5 * r[e] * rs / D * Du) * su;
                 double gv = w * (rv * rs - 0.5 * r[e] * rs / D * Dv) * sv;
-                for (int i = 0; i < H; i++) { row[i] += gu * p[i]; row[K + i] += gv * p[i]; }
-                row[H] += gu; row[K + H] += gv;
+                ga[j] = gu;
+                gb[j] = gv;
                 cst -= gu * z[2 * v] + gv * z[2 * v + 1];
             }
-            *c = cst;
+            vertex_eq_face_row(q, f, t, ga, gb, cst);
         }
     }
-    anchor_rows(b, phi, H, z, uv, uv0, mv, anchor, q);
+    anchor_rows(b, z, uv, uv0, mv, anchor, q);
 }
 
 /* Working state shared by the shared and per-chart solves. */
@@ -350,6 +528,7 @@ typedef struct solve_state {
     double *fold_s2;         /* n_charts: mean |det J| of uv0 (the fold barrier's scale) */
     int *face_start, *face_list, *vert_start, *vert_list; /* per-chart CSR */
     int *all_faces, *all_verts;
+    vertex_eq eq;            /* the Gauss-Newton sums */
 } solve_state;
 
 static void solve_state_free(solve_state *st)
@@ -357,6 +536,7 @@ static void solve_state_free(solve_state *st)
     mem_free(st->phi); mem_free(st->z); mem_free(st->uv); mem_free(st->uv0); mem_free(st->tz); mem_free(st->tuv); mem_free(st->mv);
     mem_free(st->sigma); mem_free(st->fold_s2); mem_free(st->face_start); mem_free(st->face_list); mem_free(st->vert_start); mem_free(st->vert_list);
     mem_free(st->all_faces); mem_free(st->all_verts);
+    vertex_eq_free(&st->eq);
 }
 
 /* Each chart holds two far-apart vertices of uv0 (see the header). */
@@ -422,6 +602,7 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     for (int v = 0; v < nv; v++) st->vert_list[vp[d->vchart[v]]++] = v;
     mem_free(fp); mem_free(vp);
     neuv_status s = hidden_at(f, d, d->f_in, d->f_in_dim, heads, st->phi);
+    if (s == NEUV_OK) s = vertex_eq_init(&st->eq, nv, d->nf, d->tri);
     if (s != NEUV_OK) { mem_free(csum); return s; }
     block all = {st->all_faces, st->all_verts, d->nf, nv};
     map_block(st->phi, H, theta, &all, st->z, st->uv);
@@ -480,13 +661,17 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
     if (!trial || !best) { mem_free(trial); mem_free(best); return -1; }
     memcpy(best, theta, sizeof(double) * (size_t)n);
     double e = block_objective(st, b, st->uv, mips, anchor, &flips0);
-    int flips_start = flips0, fewest = !mips && d->fold_weight > 0;
+    int flips_start = flips0, fewest = !mips && d->fold_weight > 0, failed = 0;
+    /* One system's buffers for every step (a fresh n² matrix per step costs
+     * more than the solve on a small chart: page faults). */
+    normal_eq q;
+    if (normal_eq_init(&q, n, 0) != NEUV_OK) { mem_free(trial); mem_free(best); return -1; }
     for (int step = 0; step < steps; step++) {
-        normal_eq q;
-        if (normal_eq_init(&q, n) != NEUV_OK) { mem_free(trial); mem_free(best); return -1; }
-        if (mips) mips_rows(d, b, st->phi, H, st->z, st->uv, st->uv0, st->mv, st->sigma, anchor, &q);
-        else gauss_newton_rows(d, b, st->phi, H, st->z, st->uv, st->uv0, st->mv, st->sigma, st->fold_s2, anchor, &q);
-        if (normal_eq_solve(&q, 0, NULL) != 0) { normal_eq_free(&q); break; }
+        vertex_eq_reset(&st->eq, b->verts, b->nv);
+        if (mips) mips_rows(d, b, st->z, st->uv, st->uv0, st->mv, st->sigma, anchor, &st->eq);
+        else gauss_newton_rows(d, b, st->z, st->uv, st->uv0, st->mv, st->sigma, st->fold_s2, anchor, &st->eq);
+        if (vertex_eq_flush(&st->eq, st->phi, H, b->verts, b->nv, &q) != NEUV_OK) { failed = 1; break; }
+        if (normal_eq_solve(&q, 0, NULL) != 0) break;
         int kept = 0, fl = 0;
         for (double alpha = 1; alpha > (mips ? 1e-4 : 1.0 / 64) && !kept; alpha *= 0.5) {
             for (int i = 0; i < n; i++) trial[i] = theta[i] + alpha * (q.g[i] - theta[i]);
@@ -502,7 +687,6 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
                 kept = 1;
             }
         }
-        normal_eq_free(&q);
         if (!kept) break;
         taken++;
         if (fewest ? fl <= flips0 : fl <= flips_start) {
@@ -511,13 +695,14 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
             flips0 = fl;
         }
     }
+    normal_eq_free(&q);
     if (best_step != taken) { /* back to the best valid iterate */
         memcpy(theta, best, sizeof(double) * (size_t)n);
         map_block(st->phi, H, theta, b, st->z, st->uv);
     }
     if (flips_out) *flips_out = best_step > 0 ? flips0 : flips_start;
     mem_free(trial); mem_free(best);
-    return best_step;
+    return failed ? -1 : best_step;
 }
 
 /* The conformal descent, then, when d->mips_steps > 0 and the map is
@@ -667,7 +852,7 @@ neuv_status param_output_solve_inverse(param_mlp *g, const param_mlp *f, const f
     if ((s = hidden_at(g, d, uvf, 2, 0, phi)) != NEUV_OK) goto done;
     /* Least squares in tanh's pre-image, each row weighted by the smallest
      * tanh' of its targets (a first-order match of the error after tanh). */
-    if ((s = normal_eq_init(&q, K)) != NEUV_OK) goto done;
+    if ((s = normal_eq_init(&q, K, 1024)) != NEUV_OK) goto done;
     for (int v = 0; v < nv; v++) {
         double *c, *r = normal_eq_row(&q, &c), w = 1;
         for (int j = 0; j < 3; j++) {
@@ -708,11 +893,12 @@ double param_output_solve_gradient_error(const param_mlp *f, const param_solve_d
     theta_from_layer(&f->rest[f->depth - 2], H, theta);
     if (solve_state_init(&st, f, d, anchor, 0, theta) != NEUV_OK) { solve_state_free(&st); goto out; }
     block all = {st.all_faces, st.all_verts, d->nf, d->nv};
-    if (normal_eq_init(&q, n) != NEUV_OK) { solve_state_free(&st); goto out; }
+    if (normal_eq_init(&q, n, 0) != NEUV_OK) { solve_state_free(&st); goto out; }
     int mips = d->mips_steps > 0;
-    if (mips) mips_rows(d, &all, st.phi, H, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &q);
-    else gauss_newton_rows(d, &all, st.phi, H, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &q);
-    normal_eq_flush(&q);
+    vertex_eq_reset(&st.eq, all.verts, all.nv);
+    if (mips) mips_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &st.eq);
+    else gauss_newton_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &st.eq);
+    if (vertex_eq_flush(&st.eq, st.phi, H, all.verts, all.nv, &q) != NEUV_OK) { solve_state_free(&st); goto out; }
     /* The linearization is exact at θ: ∇E = 2 (A θ − g), A symmetric (upper triangle stored). */
     cblas_dsymv(CblasRowMajor, CblasUpper, n, 2.0, q.a, n, theta, 1, 0.0, grad, 1);
     for (int i = 0; i < n; i++) grad[i] -= 2 * q.g[i];
