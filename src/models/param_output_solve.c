@@ -129,19 +129,27 @@ typedef struct block {
  * into these sparse sums (a few numbers per row); the dense products cost
  * about 6 V K² for a block of V vertices instead of the rows' 4 R K² (R ≈ 6 V
  * rows: two per face, two per vertex, the barrier's), K = H + 1 the features. */
+enum { VERTEX_EQ_CHUNK = 128 };
+
 typedef struct vertex_eq {
-    int nv;
     int *start, *col;        /* CSR over vertices: each vertex's neighbours in its faces, itself included */
     int *face_pos;           /* nf by 9: the entry of (t[i], t[j]) */
     int *diag;               /* nv: the entry of (v, v) */
     double *muu, *muv, *mvv; /* per entry */
     double *hu, *hv;         /* nv */
+    /* vertex_eq_flush's scratch, made once (a fresh one per Gauss-Newton
+     * step costs page faults): VERTEX_EQ_CHUNK rows of K features and their
+     * three products, the chunk's h values and vertices. */
+    int K;
+    double *scratch, *hc;
+    int *chunk;
 } vertex_eq;
 
 static void vertex_eq_free(vertex_eq *e)
 {
     mem_free(e->start); mem_free(e->col); mem_free(e->face_pos); mem_free(e->diag);
     mem_free(e->muu); mem_free(e->muv); mem_free(e->mvv); mem_free(e->hu); mem_free(e->hv);
+    mem_free(e->scratch); mem_free(e->hc); mem_free(e->chunk);
     memset(e, 0, sizeof *e);
 }
 
@@ -151,11 +159,15 @@ static int int_cmp(const void *p, const void *q)
     return (a > b) - (a < b);
 }
 
-/* The vertex pairs that share a face, from nf faces `tri` over nv vertices. */
-static neuv_status vertex_eq_init(vertex_eq *e, int nv, int nf, const int *tri)
+/* The vertex pairs that share a face, from nf faces `tri` over nv vertices,
+ * for features of H numbers (φ̂ has K = H + 1). */
+static neuv_status vertex_eq_init(vertex_eq *e, int nv, int nf, const int *tri, int H)
 {
     memset(e, 0, sizeof *e);
-    e->nv = nv;
+    e->K = H + 1;
+    e->scratch = mem_alloc(sizeof(double) * VERTEX_EQ_CHUNK * (size_t)e->K * 4);
+    e->hc = mem_alloc(sizeof(double) * 2 * VERTEX_EQ_CHUNK);
+    e->chunk = mem_alloc(sizeof(int) * VERTEX_EQ_CHUNK);
     int *fstart = mem_calloc((size_t)nv + 1, sizeof(int)), *flist = mem_alloc(sizeof(int) * (3 * (size_t)nf + 1));
     e->start = mem_calloc((size_t)nv + 1, sizeof(int));
     e->face_pos = mem_alloc(sizeof(int) * (9 * (size_t)nf + 1));
@@ -163,7 +175,8 @@ static neuv_status vertex_eq_init(vertex_eq *e, int nv, int nf, const int *tri)
     e->hu = mem_calloc((size_t)nv + 1, sizeof(double));
     e->hv = mem_calloc((size_t)nv + 1, sizeof(double));
     neuv_status s = NEUV_OK;
-    if (!fstart || !flist || !e->start || !e->face_pos || !e->diag || !e->hu || !e->hv) { s = error_nomem("output-layer solve"); goto done; }
+    if (!fstart || !flist || !e->start || !e->face_pos || !e->diag || !e->hu || !e->hv || !e->scratch || !e->hc ||
+        !e->chunk) { s = error_nomem("output-layer solve"); goto done; }
     /* faces of each vertex */
     for (int f = 0; f < nf; f++)
         for (int k = 0; k < 3; k++) fstart[tri[3 * f + k] + 1]++;
@@ -256,19 +269,15 @@ static void vertex_eq_vertex_row(vertex_eq *e, int v, int comp, double a, double
     else { e->mvv[p] += a * a; e->hv[v] += a * c; }
 }
 
-enum { VERTEX_EQ_CHUNK = 128 };
-
 /* The normal equations (A upper triangle, g) of the block from the sums over
- * its vertices, VERTEX_EQ_CHUNK vertices at a time. */
-static neuv_status vertex_eq_flush(const vertex_eq *e, const float *phi, int H, const int *verts, int n, normal_eq *q)
+ * its vertices, VERTEX_EQ_CHUNK vertices at a time; phi is nv by K - 1. */
+static void vertex_eq_flush(const vertex_eq *e, const float *phi, const int *verts, int n, normal_eq *q)
 {
-    int K = H + 1, N = q->n;
+    int K = e->K, H = K - 1, N = q->n;
     memset(q->a, 0, sizeof(double) * (size_t)N * N);
     memset(q->g, 0, sizeof(double) * (size_t)N);
-    q->used = 0;
-    double *C = mem_alloc(sizeof(double) * VERTEX_EQ_CHUNK * (size_t)K * 4), *hc = mem_alloc(sizeof(double) * 2 * VERTEX_EQ_CHUNK);
-    int *chunk = mem_alloc(sizeof(int) * VERTEX_EQ_CHUNK);
-    if (!C || !hc || !chunk) { mem_free(C); mem_free(hc); mem_free(chunk); return error_nomem("output-layer solve"); }
+    double *C = e->scratch, *hc = e->hc;
+    int *chunk = e->chunk;
     double *Puu = C + VERTEX_EQ_CHUNK * (size_t)K, *Puv = Puu + VERTEX_EQ_CHUNK * (size_t)K, *Pvv = Puv + VERTEX_EQ_CHUNK * (size_t)K;
     /* Vertices no row touches add nothing (on the faces split in four, the
      * edge midpoints carry rows only where the fold barrier is active). */
@@ -305,8 +314,6 @@ static neuv_status vertex_eq_flush(const vertex_eq *e, const float *phi, int H, 
         cblas_dgemv(CblasRowMajor, CblasTrans, m, K, -1.0, C, K, hc, 1, 1.0, q->g, 1);
         cblas_dgemv(CblasRowMajor, CblasTrans, m, K, -1.0, C, K, hc + VERTEX_EQ_CHUNK, 1, 1.0, q->g + K, 1);
     }
-    mem_free(C); mem_free(hc); mem_free(chunk);
-    return NEUV_OK;
 }
 
 /* z = φ̂ θ and uv = tanh(z) at the block's vertices (arrays indexed by vertex). */
@@ -602,7 +609,7 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     for (int v = 0; v < nv; v++) st->vert_list[vp[d->vchart[v]]++] = v;
     mem_free(fp); mem_free(vp);
     neuv_status s = hidden_at(f, d, d->f_in, d->f_in_dim, heads, st->phi);
-    if (s == NEUV_OK) s = vertex_eq_init(&st->eq, nv, d->nf, d->tri);
+    if (s == NEUV_OK) s = vertex_eq_init(&st->eq, nv, d->nf, d->tri, H);
     if (s != NEUV_OK) { mem_free(csum); return s; }
     block all = {st->all_faces, st->all_verts, d->nf, nv};
     map_block(st->phi, H, theta, &all, st->z, st->uv);
@@ -661,7 +668,7 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
     if (!trial || !best) { mem_free(trial); mem_free(best); return -1; }
     memcpy(best, theta, sizeof(double) * (size_t)n);
     double e = block_objective(st, b, st->uv, mips, anchor, &flips0);
-    int flips_start = flips0, fewest = !mips && d->fold_weight > 0, failed = 0;
+    int flips_start = flips0, fewest = !mips && d->fold_weight > 0;
     /* One system's buffers for every step (a fresh n² matrix per step costs
      * more than the solve on a small chart: page faults). */
     normal_eq q;
@@ -670,7 +677,7 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
         vertex_eq_reset(&st->eq, b->verts, b->nv);
         if (mips) mips_rows(d, b, st->z, st->uv, st->uv0, st->mv, st->sigma, anchor, &st->eq);
         else gauss_newton_rows(d, b, st->z, st->uv, st->uv0, st->mv, st->sigma, st->fold_s2, anchor, &st->eq);
-        if (vertex_eq_flush(&st->eq, st->phi, H, b->verts, b->nv, &q) != NEUV_OK) { failed = 1; break; }
+        vertex_eq_flush(&st->eq, st->phi, b->verts, b->nv, &q);
         if (normal_eq_solve(&q, 0, NULL) != 0) break;
         int kept = 0, fl = 0;
         for (double alpha = 1; alpha > (mips ? 1e-4 : 1.0 / 64) && !kept; alpha *= 0.5) {
@@ -702,7 +709,7 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
     }
     if (flips_out) *flips_out = best_step > 0 ? flips0 : flips_start;
     mem_free(trial); mem_free(best);
-    return failed ? -1 : best_step;
+    return best_step;
 }
 
 /* The conformal descent, then, when d->mips_steps > 0 and the map is
@@ -898,7 +905,7 @@ double param_output_solve_gradient_error(const param_mlp *f, const param_solve_d
     vertex_eq_reset(&st.eq, all.verts, all.nv);
     if (mips) mips_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &st.eq);
     else gauss_newton_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &st.eq);
-    if (vertex_eq_flush(&st.eq, st.phi, H, all.verts, all.nv, &q) != NEUV_OK) { solve_state_free(&st); goto out; }
+    vertex_eq_flush(&st.eq, st.phi, all.verts, all.nv, &q);
     /* The linearization is exact at θ: ∇E = 2 (A θ − g), A symmetric (upper triangle stored). */
     cblas_dsymv(CblasRowMajor, CblasUpper, n, 2.0, q.a, n, theta, 1, 0.0, grad, 1);
     for (int i = 0; i < n; i++) grad[i] -= 2 * q.g[i];
