@@ -816,6 +816,36 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
     return s;
 }
 
+neuv_status param_output_solve_head_from(const param_mlp *f, const param_solve_data *d, double anchor, int steps,
+                                         const float *start, float *head, param_solve_report *rep)
+{
+    param_solve_report local;
+    if (!rep) rep = &local;
+    memset(rep, 0, sizeof *rep);
+    neuv_status s = check_f(f, anchor);
+    if (s != NEUV_OK) return s;
+    if (d->n_charts != 1) return error_set(NEUV_ERR_INPUT, "a head is solved from a start on one chart at a time");
+    int n = 2 * (param_mlp_head_width(f) + 1);
+    double *theta = mem_alloc(sizeof(double) * (size_t)n);
+    if (!theta) return error_nomem("output-layer solve");
+    for (int i = 0; i < n; i++) theta[i] = start[i];
+    solve_state st;
+    s = solve_state_init(&st, f, d, anchor, 1, theta);
+    block all = {st.all_faces, st.all_verts, d->nf, d->nv};
+    if (s == NEUV_OK) rep->energy_before = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
+    int taken = s == NEUV_OK && d->nf > 0 ? solve_block(&st, &all, anchor, steps, theta) : 0;
+    if (taken < 0) s = error_nomem("output-layer solve");
+    if (s == NEUV_OK) {
+        rep->steps = taken;
+        rep->heads_improved = taken > 0;
+        rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
+        for (int i = 0; i < n; i++) head[i] = (float)theta[i];
+    }
+    solve_state_free(&st);
+    mem_free(theta);
+    return s;
+}
+
 void param_heads_apply(const param_mlp *f, const float *hidden, int n, const int *head_of, const float *heads,
                        float *uv)
 {

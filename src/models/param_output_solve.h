@@ -98,6 +98,15 @@ neuv_status param_output_solve_conformal(param_mlp *f, const param_solve_data *d
 neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data *d, double anchor, int steps,
                                      float *heads, param_solve_report *rep);
 
+/* One chart's head solved as param_output_solve_heads does, but from `start`
+ * (param_head_size(f) floats, e.g. the head a model learnt for this chart
+ * on another triangulation of it) instead of the shared output layer: the
+ * chart keeps start's orientation, and the fold barrier's scale and the
+ * pins come from start's map on d. d must hold one chart. head (written)
+ * may be start. Returns NEUV_OK, NEUV_ERR_INPUT or NEUV_ERR_NOMEM. */
+neuv_status param_output_solve_head_from(const param_mlp *f, const param_solve_data *d, double anchor, int steps,
+                                         const float *start, float *head, param_solve_report *rep);
+
 /* Least-squares fit of MLP_f⁻¹'s output layer (in place) so that it maps
  * MLP_f's outputs at the vertices (through `heads` when not NULL) back to x.
  * Returns NEUV_OK, NEUV_ERR_INPUT, NEUV_ERR_NOMEM or NEUV_ERR_INTERNAL. */
