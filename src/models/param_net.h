@@ -32,6 +32,7 @@
 
 #include "mesh/mesh.h"
 #include "models/param_mlp.h"
+#include "models/param_output_solve.h"
 #include "nn/nn.h"
 
 typedef enum param_preset { PARAM_PRESET_FAST = 0, PARAM_PRESET_PAPER = 1 } param_preset;
@@ -202,6 +203,21 @@ neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, co
  * Returns NEUV_OK, NEUV_ERR_INPUT (bad chart id, per-vertex model) or NEUV_ERR_NOMEM. */
 neuv_status param_net_apply(const param_net_model *model, int chart_id, const double *points, int n,
                             double *uv);
+
+/* UVs of the vertices of `chart`, a triangulation of chart `chart_id`'s
+ * surface other than the one the model learnt (a finer or coarser level of
+ * detail), by MLP_f with the chart's head solved again on `chart`'s own
+ * triangles: the Gauss-Newton solve of training (conformal energy, fold
+ * barrier on the faces and on the faces split in four, then the scale-free
+ * energy) started from the chart's learnt head, over the same hidden
+ * features. Folds the learnt head leaves between the learnt triangulation's
+ * vertices are what it removes. Needs a model with heads.
+ * Inputs:  chart  positions in mesh units, triangles counter-clockwise
+ * Outputs: uv     #chart->nv by 2, as param_net_apply; rep: the solve's
+ *          energies and steps kept (NULL: not wanted)
+ * Returns NEUV_OK, NEUV_ERR_INPUT (bad chart id, no heads) or NEUV_ERR_NOMEM. */
+neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
+                                   param_solve_report *rep);
 
 /* Surface points of chart `chart_id` from UVs by MLP_f⁻¹ (the inverse map).
  * Inputs: uv #N by 2 (as param_net_apply returns). Outputs: points #N by 3, mesh units. */
