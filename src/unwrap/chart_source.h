@@ -33,4 +33,9 @@ int chart_source_is_network(chart_source s);
  * (may be NULL) gets the chart's 3D area. Returns NaN when no face counts. */
 double chart_qce_mean(const neuv_mesh *sub, const double *uv, double *area);
 
+/* L2 stretch of a chart's map (docs/metrics.md: Sander et al.'s, after the
+ * scale that makes the chart's UV area its 3D area), over the faces whose
+ * 3D and UV areas are not zero; NaN when there is none. */
+double chart_l2_stretch(const neuv_mesh *sub, const double *uv);
+
 #endif

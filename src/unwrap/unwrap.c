@@ -72,7 +72,7 @@ void unwrap_piece_clear(chart_piece *p)
     mem_free(p->fmap);
     mem_free(p->uv);
     memset(p, 0, sizeof *p);
-    p->net = -1;
+    p->net = p->tried = -1;
     p->net_qce = NAN;
     p->lscm_qce = NAN;
 }
@@ -127,7 +127,7 @@ static int grow_pieces(chart_piece **pieces, int *cap, int need)
     chart_piece *np = mem_realloc(*pieces, sizeof *np * (size_t)nc);
     if (!np) return -1;
     memset(np + *cap, 0, sizeof *np * (size_t)(nc - *cap));
-    for (int i = *cap; i < nc; i++) { np[i].net = -1; np[i].net_qce = NAN; np[i].lscm_qce = NAN; }
+    for (int i = *cap; i < nc; i++) { np[i].net = np[i].tried = -1; np[i].net_qce = NAN; np[i].lscm_qce = NAN; }
     *pieces = np;
     *cap = nc;
     return 0;
@@ -137,9 +137,6 @@ static int grow_pieces(chart_piece **pieces, int *cap, int need)
  * degenerate face, simple boundary). A folded neural chart is re-flattened
  * with LSCM; a chart the classic method cannot flatten without folds is
  * split in two and both halves are flattened again. */
-/* How many times a network chart whose map crosses its own boundary is
- * halved before its pieces go to LSCM. */
-#define NET_SPLIT_DEPTH 3
 
 static int piece_accepts(void *user, int chart, const double *corner_uv)
 {
@@ -245,6 +242,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
         char why[160];
         if (corner_uv && (!p->from_split || p->net_split)) {
             int head = p->net_split ? p->net_head : c;
+            p->tried = head;
             piece_uv_from_corners(p, corner_uv);
             int ok = chart_uv_check_run(p->sub, p->uv, &chk);
             if (ok < 0) { s = error_nomem("chart check"); break; }
@@ -394,10 +392,13 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
         if (net) r->chart_net = net;
         int *mir = mem_realloc(r->chart_mirrored, sizeof(int) * (size_t)r->n_charts);
         if (mir) r->chart_mirrored = mir;
-        if (!net || !mir) { mem_free(parent); return error_nomem("the model"); }
+        int *tried = mem_realloc(r->chart_tried, sizeof(int) * (size_t)r->n_charts);
+        if (tried) r->chart_tried = tried;
+        if (!net || !mir || !tried) { mem_free(parent); return error_nomem("the model"); }
         for (int c = before; c < r->n_charts; c++) {
             r->chart_net[c] = r->chart_net[parent[c]];
             r->chart_mirrored[c] = r->chart_mirrored[parent[c]];
+            r->chart_tried[c] = r->chart_tried[parent[c]];
         }
     }
     mem_free(parent);
@@ -606,10 +607,12 @@ static neuv_status param_by_networks(struct neuv_unwrap_result *r, const unwrap_
     if (s == NEUV_OK && keep_model) {
         r->chart_net = mem_alloc(sizeof(int) * (size_t)r->n_charts);
         r->chart_mirrored = mem_alloc(sizeof(int) * (size_t)r->n_charts);
-        if (!r->chart_net || !r->chart_mirrored) s = error_nomem("the model");
+        r->chart_tried = mem_alloc(sizeof(int) * (size_t)r->n_charts);
+        if (!r->chart_net || !r->chart_mirrored || !r->chart_tried) s = error_nomem("the model");
         for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) {
             r->chart_net[c] = pieces[c].net;
             r->chart_mirrored[c] = pieces[c].mirrored;
+            r->chart_tried[c] = pieces[c].net >= 0 ? pieces[c].net : pieces[c].tried;
         }
     }
     for (int c = 0; c < cap; c++) unwrap_piece_clear(&pieces[c]);
@@ -652,8 +655,13 @@ static neuv_status pack_afresh(struct neuv_unwrap_result *r)
 
 neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r, const unwrap_plan *plan)
 {
-    neuv_status s = plan->apply ? unwrap_apply_place(r, plan->apply) : pack_afresh(r);
+    /* A simplified copy's layout is nobody's texture: the charts of its
+     * model, mapped and refined on this mesh, are packed as a per-shape
+     * unwrap packs its own. */
+    int fresh = !plan->apply || plan->apply->refine_on_mesh;
+    neuv_status s = fresh ? pack_afresh(r) : unwrap_apply_place(r, plan->apply);
     if (s != NEUV_OK) return s;
+    if (plan->apply && fresh) r->model.repacked = 1;
     if (plan->model) /* the model's inference: every stage after cleaning, the metrics aside */
         r->model.inference_seconds = r->seconds[STAGE_PATCHES] + r->seconds[STAGE_PARAM] +
                                      r->seconds[STAGE_REPAIR] + r->seconds[STAGE_PACK] +
@@ -697,7 +705,7 @@ neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_
     struct neuv_unwrap_result *c = mem_calloc(1, sizeof *c);
     if (!c) return error_nomem("the result");
     *c = *r;
-    c->chart_net = c->chart_mirrored = c->face_label = NULL;
+    c->chart_net = c->chart_mirrored = c->chart_tried = c->face_label = NULL;
     c->patchnet = NULL;
     c->param = NULL;
     int failed = 0;
@@ -806,6 +814,7 @@ void neuv_unwrap_result_free(neuv_unwrap_result *r)
     mem_free(r->repairs);
     mem_free(r->chart_net);
     mem_free(r->chart_mirrored);
+    mem_free(r->chart_tried);
     mem_free(r->chart_source);
     mem_free(r->chart_net_qce);
     mem_free(r->chart_lscm_qce);

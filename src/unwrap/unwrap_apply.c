@@ -947,6 +947,84 @@ neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model
 }
 
 
+/* On the mesh a simplified copy's model is applied to (--train-faces), a
+ * chart's head (MLP_f's output layer for it) is solved again on the
+ * chart's own triangles (param_net_apply_solved): the learnt head fits the
+ * copy's triangles, and between the copy's vertices its map can fold or be
+ * far less conformal than the features allow (camelhead: a chart of 5086
+ * faces at qce 1.128 where LSCM gives 1.016). The solved map (the same
+ * networks' map, with an output layer fitted here) replaces the learnt
+ * head's map `uv` when the learnt one folds or crosses its own boundary,
+ * or when it does neither and is no worse than the learnt one in angles
+ * (qce_mean) and in area (L2 stretch): the solve minimizes angle
+ * distortion only, and can squeeze a region the learnt map, trained with
+ * L_iso, keeps (face.obj: a chart whose L∞ stretch doubled, and whose
+ * refinement then stalled at qce 1.037 where the learnt map refined to
+ * 1.017). Returns 1 when replaced, 0 when not, -1 on an error (*s set). */
+static int solve_head_on_mesh(chart_piece *p, const param_net_model *param, int net, double *uv, double *scratch,
+                              neuv_status *s)
+{
+    int n = p->sub->nv;
+    double *solved = mem_alloc(sizeof(double) * 2 * (size_t)n);
+    if (!solved) { *s = error_nomem("chart head"); return -1; }
+    *s = param_net_apply_solved(param, net, p->sub, solved, NULL);
+    int take = 0;
+    if (*s == NEUV_OK) {
+        chart_uv_check chk;
+        memcpy(scratch, solved, sizeof(double) * 2 * (size_t)n);
+        int ok_solved = chart_uv_check_run(p->sub, scratch, &chk);
+        memcpy(scratch, uv, sizeof(double) * 2 * (size_t)n);
+        int ok_learnt = chart_uv_check_run(p->sub, scratch, &chk);
+        if (ok_solved < 0 || ok_learnt < 0) *s = error_nomem("chart check");
+        else if (ok_learnt == 0) take = 1;
+        else take = ok_solved > 0 && chart_qce_mean(p->sub, solved, NULL) <= chart_qce_mean(p->sub, uv, NULL) &&
+                    chart_l2_stretch(p->sub, solved) <= chart_l2_stretch(p->sub, uv);
+    }
+    if (take) memcpy(uv, solved, sizeof(double) * 2 * (size_t)n);
+    mem_free(solved);
+    return *s == NEUV_OK ? take : -1;
+}
+
+/* Chart c of r split in two (charts_split) for its pieces to be mapped
+ * again by the networks: the new charts come from the same model chart,
+ * one split deeper. *model_chart and *depth (cap entries) grow when the
+ * chart count passes cap. Returns NEUV_OK or NEUV_ERR_NOMEM. */
+static neuv_status split_network_chart(struct neuv_unwrap_result *r, int c, int cap, int **model_chart, int **depth)
+{
+    int before = r->n_charts;
+    neuv_status s = charts_split(r->mesh, r->face_chart, &r->n_charts, c);
+    if (s == NEUV_OK && r->n_charts > cap) {
+        int *nm = mem_realloc(*model_chart, sizeof(int) * (size_t)r->n_charts);
+        if (nm) *model_chart = r->model.source_chart = nm;
+        int *nd = mem_realloc(*depth, sizeof(int) * (size_t)r->n_charts);
+        if (nd) *depth = nd;
+        if (!nm || !nd) return error_nomem("charts");
+    }
+    for (int k = before; s == NEUV_OK && k < r->n_charts; k++) {
+        (*model_chart)[k] = (*model_chart)[c];
+        (*depth)[k] = (*depth)[c] + 1;
+    }
+    (*depth)[c]++;
+    return s;
+}
+
+/* For a chart the networks folded on the copy (flattened by LSCM there,
+ * so no network map of it is kept): the head they had for it, solved on
+ * this mesh's triangles, into p->uv. Returns 1 when that map is usable
+ * (*mirror: whether it must be mirrored to run counter-clockwise), 0 when
+ * not (*chk says why), -1 on an error (*s set). */
+static int solve_folded_head(chart_piece *p, const param_net_model *param, int head, double *scratch, int *mirror,
+                             chart_uv_check *chk, neuv_status *s)
+{
+    *s = param_net_apply_solved(param, head, p->sub, p->uv, NULL);
+    if (*s != NEUV_OK) return -1;
+    memcpy(scratch, p->uv, sizeof(double) * 2 * (size_t)p->sub->nv);
+    int ok = chart_uv_check_run(p->sub, scratch, chk);
+    if (ok < 0) { *s = error_nomem("chart check"); return -1; }
+    *mirror = chk->mirrored;
+    return ok;
+}
+
 neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model *md, const unwrap_apply_options *o)
 {
     neuv_mesh *m = r->mesh;
@@ -966,11 +1044,12 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
     int cap = r->n_charts + 16;
     chart_piece *pieces = mem_calloc((size_t)cap, sizeof *pieces);
     int *repaired = mem_calloc((size_t)cap, sizeof(int));
+    int *depth = mem_calloc((size_t)cap, sizeof(int)); /* splits of a network chart whose map crossed its boundary */
     int *mc_grown = mem_realloc(model_chart, sizeof(int) * (size_t)cap);
     double **anchor = mem_calloc((size_t)cap, sizeof *anchor);
     if (mc_grown) model_chart = r->model.source_chart = mc_grown;
-    if (!pieces || !repaired || !mc_grown || !anchor) {
-        mem_free(pieces); mem_free(repaired); mem_free(anchor);
+    if (!pieces || !repaired || !depth || !mc_grown || !anchor) {
+        mem_free(pieces); mem_free(repaired); mem_free(depth); mem_free(anchor);
         return error_nomem("charts");
     }
     /* The source's refinement is carried over (its difference to the networks'
@@ -984,11 +1063,13 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             if (np) { memset(np + cap, 0, sizeof *np * (size_t)(nc - cap)); pieces = np; }
             int *nr = mem_realloc(repaired, sizeof(int) * (size_t)nc);
             if (nr) { memset(nr + cap, 0, sizeof(int) * (size_t)(nc - cap)); repaired = nr; }
+            int *nd = mem_realloc(depth, sizeof(int) * (size_t)nc);
+            if (nd) { memset(nd + cap, 0, sizeof(int) * (size_t)(nc - cap)); depth = nd; }
             int *nm = mem_realloc(model_chart, sizeof(int) * (size_t)nc);
             if (nm) model_chart = r->model.source_chart = nm;
             double **na = mem_realloc(anchor, sizeof *na * (size_t)nc);
             if (na) { memset(na + cap, 0, sizeof *na * (size_t)(nc - cap)); anchor = na; }
-            if (!np || !nr || !nm || !na) { s = error_nomem("charts"); break; }
+            if (!np || !nr || !nd || !nm || !na) { s = error_nomem("charts"); break; }
             cap = nc;
         }
         chart_piece *p = &pieces[c];
@@ -997,7 +1078,7 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
         anchor[c] = NULL;
         if ((s = unwrap_piece_build(m, r->face_chart, c, p))) break;
         log_progress("param", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
-        int mc = model_chart[c], net = md->chart_net[mc], n = p->sub->nv, relaxed = 0;
+        int mc = model_chart[c], net = md->chart_net[mc], n = p->sub->nv, relaxed = 0, head_solved = 0;
         double *target = mem_alloc(sizeof(double) * 2 * (size_t)n), *scratch = mem_alloc(sizeof(double) * 2 * (size_t)n);
         double *ext = mem_alloc(sizeof(double) * 2 * (size_t)n), *delta = mem_alloc(sizeof(double) * 2 * (size_t)n);
         double *closest = mem_alloc(sizeof(double) * 3 * (size_t)n);
@@ -1008,6 +1089,22 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             break;
         }
         s = source_chart_uvs(md, mc, p, ext, anchor[c], net >= 0 && carry_refinement ? delta : NULL, closest);
+        int mirror = net >= 0 && md->chart_mirrored[mc], mapped = 0;
+        if (s == NEUV_OK && net < 0 && o->refine_on_mesh && md->chart_tried && md->chart_tried[mc] >= 0 &&
+            md->param && md->param->heads) {
+            /* The networks' map folded on the copy, where LSCM flattened the
+             * chart: their head solved on this mesh may not fold. It takes
+             * the chart only when it is no worse than the copy's map carried
+             * here (`ext`) in angles (qce_mean) and in area (L2 stretch): an
+             * injective map can still squeeze a region (face.obj: a chart at
+             * L2 stretch 26.6 against 1.29). */
+            chart_uv_check fk;
+            int got = solve_folded_head(p, md->param, md->chart_tried[mc], scratch, &mirror, &fk, &s);
+            mapped = got > 0 && chart_qce_mean(p->sub, p->uv, NULL) <= chart_qce_mean(p->sub, ext, NULL) &&
+                     chart_l2_stretch(p->sub, p->uv) <= chart_l2_stretch(p->sub, ext);
+            if (mapped) net = md->chart_tried[mc];
+            head_solved = mapped;
+        }
         if (s == NEUV_OK && net >= 0) {
             /* The networks learnt the chart, not what lies past its seam: a
              * vertex there takes their map at its closest point of the chart,
@@ -1016,7 +1113,9 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
                 if (vertex_chart[p->vmap[v]] == mc || o->refine_on_mesh)
                     memcpy(closest + 3 * (size_t)v, p->sub->pos + 3 * (size_t)v, sizeof(double) * 3);
             double *at = p->uv;
-            s = param_net_apply(md->param, net, closest, n, at);
+            if (!mapped) s = param_net_apply(md->param, net, closest, n, at);
+            if (s == NEUV_OK && !mapped && o->refine_on_mesh && md->param->heads)
+                head_solved = solve_head_on_mesh(p, md->param, net, at, scratch, &s) > 0;
             for (int v = 0; s == NEUV_OK && v < n; v++) {
                 if (vertex_chart[p->vmap[v]] == mc || o->refine_on_mesh) continue;
                 /* the extension, in the networks' own frame (before mirroring and placing) */
@@ -1024,10 +1123,10 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
                 const atlas_chart_transform *xf = &md->xf[mc];
                 double cs = cos(xf->angle), sn = sin(xf->angle);
                 double lx = (cs * e[0] + sn * e[1]) / xf->scale, ly = (-sn * e[0] + cs * e[1]) / xf->scale;
-                at[2 * v] += md->chart_mirrored[mc] ? -lx : lx;
+                at[2 * v] += mirror ? -lx : lx;
                 at[2 * v + 1] += ly;
             }
-            if (md->chart_mirrored[mc]) /* as the source's check did before packing */
+            if (mirror) /* as the source's check did before packing (or this mesh's, for a head solved here) */
                 for (int v = 0; v < n; v++) p->uv[2 * v] = -p->uv[2 * v];
             if (s == NEUV_OK) p->net_qce = chart_qce_mean(p->sub, p->uv, NULL);
             if (s == NEUV_OK && refine > 0 && !carry_refinement) { /* refined on this mesh, where usable */
@@ -1091,6 +1190,21 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             snprintf(why, sizeof why, "%d flipped, %d degenerate faces, %d boundary crossings%s", chk.flipped,
                      chk.degenerate, chk.boundary_crossings, chk.mirrored ? ", reversed orientation" : "");
             const char *how = "LSCM";
+            if (o->refine_on_mesh && net >= 0 && chk.flipped == 0 && chk.degenerate == 0 && !chk.mirrored &&
+                depth[c] < NET_SPLIT_DEPTH && p->sub->nf >= 2 && splits < m->nf) {
+                /* As training does on its own mesh: a network map that folds
+                 * nowhere but crosses the chart's own boundary may be injective
+                 * on each half; the halves are mapped again (their heads solved
+                 * on them) instead of handing the chart to LSCM. */
+                int before = r->n_charts;
+                s = split_network_chart(r, c, cap, &model_chart, &depth);
+                splits++;
+                unwrap_add_repair(r, c, "the networks' map crossed the chart's own boundary on this mesh (%d crossings); "
+                                  "split into %d charts, each mapped again", chk.boundary_crossings, r->n_charts - before + 1);
+                mem_free(target); mem_free(scratch); mem_free(ext);
+                c--;
+                continue;
+            }
             /* Local repairs first, each relaxed if it still folds: the map as
              * it is; its corners past the seam pulled onto the source island
              * (a zigzag border extended past the seam can cross itself); then
@@ -1154,7 +1268,10 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
         else if (repaired[c]) p->source = CHART_SOURCE_LSCM_AFTER_FOLD;
         else p->source = md->refine > 0 || relaxed ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
         if (s == NEUV_OK && chart_source_is_network(p->source)) s = unwrap_piece_lscm_qce(p);
-        if (net >= 0 && !repaired[c] && !baseline && !from_source && !deviates) r->model.network_charts++;
+        if (net >= 0 && !repaired[c] && !baseline && !from_source && !deviates) {
+            r->model.network_charts++;
+            r->model.heads_solved += head_solved;
+        }
         if ((net < 0 || from_source || deviates) && !repaired[c]) r->model.transferred_charts++;
         mem_free(target); mem_free(scratch);
     }
@@ -1162,6 +1279,7 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     mem_free(repaired);
+    mem_free(depth);
     r->neural_charts = r->model.network_charts;
     unwrap_stage_time(r, STAGE_PARAM, t);
 

@@ -66,6 +66,8 @@ struct neuv_unwrap_result {
     /* Kept for --save-model (NULL / 0 otherwise). */
     int *chart_net;           /* n_charts: network chart whose map chart c uses, -1 for a classic map */
     int *chart_mirrored;      /* n_charts: 1 when the injectivity check mirrored the chart before packing */
+    int *chart_tried;         /* n_charts: network chart whose map was tried on chart c, kept or not
+                                 (chart_net, or the one that folded there), -1 none */
     int *face_label;          /* #F PatchNet argmax on this mesh */
     patchnet_model *patchnet;
     param_net_model *param;
@@ -86,6 +88,7 @@ struct neuv_unwrap_result {
         int pulled_vertices;      /* corners past a source seam pulled toward their chart's island */
         int refinement_carried;   /* 1: the source's refinement of the networks' map was carried over */
         int repacked;             /* --train-faces only: overlaps survived the shrinking, the atlas was packed afresh */
+        int heads_solved;         /* --train-faces only: network charts whose map is their head solved on this mesh */
         double surface_distance;  /* largest face-centroid distance to the source surface / its bbox diagonal */
         double inference_seconds; /* from the cleaned mesh to the packed atlas (no metrics) */
         double label_agreement;   /* -1, or PatchNet inference vs stored labels (--check-inference) */
@@ -126,6 +129,11 @@ void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt,
     __attribute__((format(printf, 3, 4)));
 
 /* One chart during the repair stage: its own mesh and per-vertex UVs. */
+/* How many times a network chart whose map crosses its own boundary is
+ * halved before its pieces go to LSCM (training, and a simplified copy's
+ * model applied to the full mesh). */
+#define NET_SPLIT_DEPTH 3
+
 typedef struct chart_piece {
     neuv_mesh *sub;
     int *vmap, *fmap;
@@ -136,6 +144,7 @@ typedef struct chart_piece {
     int net_head;    /* with net_split: the network chart whose map it holds */
     int net_depth;   /* with net_split: splits since that network chart */
     int net;         /* network chart whose map is kept, -1 otherwise */
+    int tried;       /* network chart whose map was tried on it, kept or not, -1 none */
     int mirrored;    /* chart_uv_check mirrored it */
     chart_source source;   /* where its final map came from */
     double net_qce;        /* the networks' own qce_mean on it (NaN: none) */

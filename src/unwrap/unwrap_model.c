@@ -27,6 +27,7 @@ void unwrap_model_free(unwrap_model *model)
     mem_free(model->xf);
     mem_free(model->chart_net);
     mem_free(model->chart_mirrored);
+    mem_free(model->chart_tried);
     param_net_model_free(model->param);
     if (model->patchnet) patchnet_model_free(model->patchnet);
     mem_free(model->patchnet);
@@ -63,6 +64,11 @@ neuv_status unwrap_model_from_result(struct neuv_unwrap_result *r, unwrap_model 
     memcpy(m->xf, r->transforms, sizeof *m->xf * (size_t)nc);
     memcpy(m->chart_net, r->chart_net, sizeof(int) * (size_t)nc);
     memcpy(m->chart_mirrored, r->chart_mirrored, sizeof(int) * (size_t)nc);
+    if (r->chart_tried) {
+        m->chart_tried = mem_alloc(sizeof(int) * (size_t)nc);
+        if (!m->chart_tried) { unwrap_model_free(m); return error_nomem("the model"); }
+        memcpy(m->chart_tried, r->chart_tried, sizeof(int) * (size_t)nc);
+    }
     double lo[3], hi[3];
     mesh_bounding_box(m->source, lo, hi);
     for (int q = 0; q < 3; q++) m->norm[q] = 0.5 * (lo[q] + hi[q]);

@@ -61,6 +61,8 @@ typedef struct unwrap_model {
     atlas_chart_transform *xf;   /* n_charts */
     int *chart_net;              /* n_charts: network chart id or -1 */
     int *chart_mirrored;         /* n_charts */
+    int *chart_tried;            /* n_charts: network chart whose map was tried on it, kept or not (-1
+                                    none); in memory only (models read from a file: NULL) */
     param_net_model *param;      /* NULL for lscm / harmonic models */
     patchnet_model *patchnet;    /* NULL when not saved */
 } unwrap_model;

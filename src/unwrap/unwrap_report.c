@@ -168,7 +168,11 @@ static void write_surface_model(json_writer *w, const struct neuv_unwrap_result 
     json_key(w, "map_from");
     json_string(w, r->model.refinement_carried
                        ? "the networks' map at the new vertices plus the source's refinement carried over"
+                   : r->model.trained_on_copy
+                       ? "the networks' map at the new vertices, each chart's head solved on this mesh where that "
+                         "map is better"
                        : "the networks' map at the new vertices");
+    if (r->model.trained_on_copy) { json_key(w, "heads_solved_on_mesh"); json_int(w, r->model.heads_solved); }
     json_key(w, "pulled_vertices"); json_int(w, r->model.pulled_vertices);
     json_key(w, "shrunk_charts"); json_int(w, r->model.shrunk_charts);
     json_key(w, "moved_charts"); json_int(w, r->model.moved_charts);
