@@ -5,6 +5,7 @@
 #include "metrics/uv_overlap.h"
 #include "mesh/shapes.h"
 #include "core/rng.h"
+#include "unwrap/chart_source.h"
 
 static uv_metrics measure(const neuv_mesh *m)
 {
@@ -78,6 +79,30 @@ static void test_u_doubled(void)
     CHECK_NEAR(mt.sym_dirichlet_mean, 5, 1e-12);
     CHECK_INT(mt.flipped, 0);
     CHECK(isnan(mt.packing_efficiency));
+    mesh_free(m);
+}
+
+/* The per-chart figures the repair compares maps by (unwrap/chart_source.h):
+ * the same values as the metrics for one chart, whatever the map's scale,
+ * rotation or mirroring (u doubled then everything scaled by 3 and mirrored:
+ * qce 2, L2 stretch √1.25; a similarity: 1 and 1). */
+static void test_chart_figures(void)
+{
+    neuv_mesh *m = shape_grid(5, 7, 1.0, 1.0, 0);
+    double *uv = malloc(sizeof(double) * 2 * (size_t)m->nv);
+    for (int v = 0; v < m->nv; v++) { uv[2 * v] = -6 * m->pos[3 * v]; uv[2 * v + 1] = 3 * m->pos[3 * v + 1]; }
+    double area;
+    CHECK_NEAR(chart_qce_mean(m, uv, &area), 2, 1e-12);
+    CHECK_NEAR(area, 1, 1e-12);
+    CHECK_NEAR(chart_l2_stretch(m, uv), sqrt(1.25), 1e-12);
+    for (int v = 0; v < m->nv; v++) { /* turned by 30 degrees, scaled by 0.1 */
+        double x = m->pos[3 * v], y = m->pos[3 * v + 1];
+        uv[2 * v] = 0.1 * (cos(0.5236) * x - sin(0.5236) * y);
+        uv[2 * v + 1] = 0.1 * (sin(0.5236) * x + cos(0.5236) * y);
+    }
+    CHECK_NEAR(chart_qce_mean(m, uv, NULL), 1, 1e-12);
+    CHECK_NEAR(chart_l2_stretch(m, uv), 1, 1e-12);
+    free(uv);
     mesh_free(m);
 }
 
@@ -420,6 +445,7 @@ int main(void)
     test_jacobian();
     test_identity();
     test_u_doubled();
+    test_chart_figures();
     test_one_flip();
     test_fold();
     test_fill_rule();

@@ -26,17 +26,23 @@ int chart_source_is_network(chart_source s)
     return s == CHART_SOURCE_NETWORK || s == CHART_SOURCE_NETWORK_REFINED;
 }
 
+/* Face f's corners: 3D positions and UVs. */
+static void face_corners(const neuv_mesh *sub, const double *uv, int f, double p[3][3], double q[3][2])
+{
+    for (int k = 0; k < 3; k++) {
+        int v = sub->tri[3 * f + k];
+        for (int c = 0; c < 3; c++) p[k][c] = sub->pos[3 * v + c];
+        q[k][0] = uv[2 * v];
+        q[k][1] = uv[2 * v + 1];
+    }
+}
+
 double chart_qce_mean(const neuv_mesh *sub, const double *uv, double *area)
 {
     double num = 0, den = 0, total = 0;
     for (int f = 0; f < sub->nf; f++) {
         double p[3][3], q[3][2], s[2];
-        for (int k = 0; k < 3; k++) {
-            int v = sub->tri[3 * f + k];
-            for (int c = 0; c < 3; c++) p[k][c] = sub->pos[3 * v + c];
-            q[k][0] = uv[2 * v];
-            q[k][1] = uv[2 * v + 1];
-        }
+        face_corners(sub, uv, f, p, q);
         double a = mesh_face_area(sub, f);
         total += a;
         uv_jacobian_singular_values(p, q, s);
@@ -54,12 +60,7 @@ double chart_l2_stretch(const neuv_mesh *sub, const double *uv)
     for (int pass = 0; pass < 2; pass++)
         for (int f = 0; f < sub->nf; f++) {
             double p[3][3], q[3][2], s[2];
-            for (int k = 0; k < 3; k++) {
-                int v = sub->tri[3 * f + k];
-                for (int c = 0; c < 3; c++) p[k][c] = sub->pos[3 * v + c];
-                q[k][0] = uv[2 * v];
-                q[k][1] = uv[2 * v + 1];
-            }
+            face_corners(sub, uv, f, p, q);
             double a = mesh_face_area(sub, f);
             double b = 0.5 * fabs((q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]));
             if (!(a > 0) || !(b > 0)) continue;
