@@ -947,6 +947,13 @@ neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model
 }
 
 
+/* 1 when map a of the chart is no worse than map b in angles (qce_mean)
+ * and in area (L2 stretch). */
+static int no_worse_map(const neuv_mesh *sub, const double *a, const double *b)
+{
+    return chart_qce_mean(sub, a, NULL) <= chart_qce_mean(sub, b, NULL) && chart_l2_stretch(sub, a) <= chart_l2_stretch(sub, b);
+}
+
 /* On the mesh a simplified copy's model is applied to (--train-faces), a
  * chart's head (MLP_f's output layer for it) is solved again on the
  * chart's own triangles (param_net_apply_solved): the learnt head fits the
@@ -977,8 +984,7 @@ static int solve_head_on_mesh(chart_piece *p, const param_net_model *param, int 
         int ok_learnt = chart_uv_check_run(p->sub, scratch, &chk);
         if (ok_solved < 0 || ok_learnt < 0) *s = error_nomem("chart check");
         else if (ok_learnt == 0) take = 1;
-        else take = ok_solved > 0 && chart_qce_mean(p->sub, solved, NULL) <= chart_qce_mean(p->sub, uv, NULL) &&
-                    chart_l2_stretch(p->sub, solved) <= chart_l2_stretch(p->sub, uv);
+        else take = ok_solved > 0 && no_worse_map(p->sub, solved, uv);
     }
     if (take) memcpy(uv, solved, sizeof(double) * 2 * (size_t)n);
     mem_free(solved);
@@ -1012,16 +1018,17 @@ static neuv_status split_network_chart(struct neuv_unwrap_result *r, int c, int 
  * so no network map of it is kept): the head they had for it, solved on
  * this mesh's triangles, into p->uv. Returns 1 when that map is usable
  * (*mirror: whether it must be mirrored to run counter-clockwise), 0 when
- * not (*chk says why), -1 on an error (*s set). */
+ * not, -1 on an error (*s set). */
 static int solve_folded_head(chart_piece *p, const param_net_model *param, int head, double *scratch, int *mirror,
-                             chart_uv_check *chk, neuv_status *s)
+                             neuv_status *s)
 {
     *s = param_net_apply_solved(param, head, p->sub, p->uv, NULL);
     if (*s != NEUV_OK) return -1;
+    chart_uv_check chk;
     memcpy(scratch, p->uv, sizeof(double) * 2 * (size_t)p->sub->nv);
-    int ok = chart_uv_check_run(p->sub, scratch, chk);
+    int ok = chart_uv_check_run(p->sub, scratch, &chk);
     if (ok < 0) { *s = error_nomem("chart check"); return -1; }
-    *mirror = chk->mirrored;
+    *mirror = chk.mirrored;
     return ok;
 }
 
@@ -1098,10 +1105,8 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
              * here (`ext`) in angles (qce_mean) and in area (L2 stretch): an
              * injective map can still squeeze a region (face.obj: a chart at
              * L2 stretch 26.6 against 1.29). */
-            chart_uv_check fk;
-            int got = solve_folded_head(p, md->param, md->chart_tried[mc], scratch, &mirror, &fk, &s);
-            mapped = got > 0 && chart_qce_mean(p->sub, p->uv, NULL) <= chart_qce_mean(p->sub, ext, NULL) &&
-                     chart_l2_stretch(p->sub, p->uv) <= chart_l2_stretch(p->sub, ext);
+            int got = solve_folded_head(p, md->param, md->chart_tried[mc], scratch, &mirror, &s);
+            mapped = got > 0 && no_worse_map(p->sub, p->uv, ext);
             if (mapped) net = md->chart_tried[mc];
             head_solved = mapped;
         }
