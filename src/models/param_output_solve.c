@@ -536,13 +536,14 @@ typedef struct solve_state {
     int *face_start, *face_list, *vert_start, *vert_list; /* per-chart CSR */
     int *all_faces, *all_verts;
     vertex_eq eq;            /* the Gauss-Newton sums */
+    double *fit_mass;        /* nv, zero between uses: fit_head's vertex weights (only with d->fit_uv) */
 } solve_state;
 
 static void solve_state_free(solve_state *st)
 {
     mem_free(st->phi); mem_free(st->z); mem_free(st->uv); mem_free(st->uv0); mem_free(st->tz); mem_free(st->tuv); mem_free(st->mv);
     mem_free(st->sigma); mem_free(st->fold_s2); mem_free(st->face_start); mem_free(st->face_list); mem_free(st->vert_start); mem_free(st->vert_list);
-    mem_free(st->all_faces); mem_free(st->all_verts);
+    mem_free(st->all_faces); mem_free(st->all_verts); mem_free(st->fit_mass);
     vertex_eq_free(&st->eq);
 }
 
@@ -593,7 +594,8 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     st->all_faces = mem_alloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
     st->all_verts = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
     double *csum = mem_calloc((size_t)nc, sizeof(double));
-    if (!st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->fold_s2 || !st->face_start ||
+    if (d->fit_uv) st->fit_mass = mem_calloc((size_t)(nv > 0 ? nv : 1), sizeof(double));
+    if ((d->fit_uv && !st->fit_mass) || !st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->fold_s2 || !st->face_start ||
         !st->vert_start || !st->face_list || !st->vert_list || !st->all_faces || !st->all_verts || !csum) {
         mem_free(csum);
         return error_nomem("output-layer solve");
@@ -810,16 +812,15 @@ static int fit_head(const solve_state *st, const block *b, double *theta)
 {
     const param_solve_data *d = st->d;
     int H = st->H, K = H + 1, n = 0;
-    double *mass = mem_calloc((size_t)d->nv, sizeof(double));
-    if (!mass) return -1;
+    double *mass = st->fit_mass;
     for (int k = 0; k < b->nf; k++) {
         const int *t = d->tri + 3 * b->faces[k];
         for (int j = 0; j < 3; j++) mass[t[j]] += d->face_w[b->faces[k]] / 3;
     }
     normal_eq q;
     double *rhs = mem_calloc(2 * (size_t)K, sizeof(double));
-    if (!rhs || normal_eq_init(&q, K, VERTEX_EQ_CHUNK) != NEUV_OK) { mem_free(mass); mem_free(rhs); return -1; }
-    for (int k = 0; k < b->nv; k++) {
+    if (!rhs || normal_eq_init(&q, K, VERTEX_EQ_CHUNK) != NEUV_OK) { mem_free(rhs); n = -1; }
+    for (int k = 0; n >= 0 && k < b->nv; k++) {
         int v = b->verts[k];
         if (v >= d->fit_nv || !(mass[v] > 0)) continue;
         double sw = sqrt(mass[v]), y[2];
@@ -846,8 +847,10 @@ static int fit_head(const solve_state *st, const block *b, double *theta)
             for (int j = 0; j < 2; j++)
                 for (int i = 0; i < K; i++) theta[(size_t)j * K + i] = rhs[2 * i + j];
     }
+    for (int k = 0; k < b->nv; k++) mass[b->verts[k]] = 0; /* zero again for the next chart */
+    if (n < 0) return -1;
     normal_eq_free(&q);
-    mem_free(mass); mem_free(rhs);
+    mem_free(rhs);
     return ok;
 }
 
