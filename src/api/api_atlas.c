@@ -222,7 +222,7 @@ neuv_status neuv_atlas_parameterize(neuv_atlas *a, const neuv_param_options *o)
     s = unwrap_result_clone(a->after_charts, &r);
     if (s == NEUV_OK) {
         r->opts = u;
-        if (u.threads > 0) nn_set_threads(u.threads);
+        nn_set_threads(u.threads);
         unwrap_plan plan = {NULL, 0, 0, NULL};
         s = unwrap_stage_param(r, &plan, a->features, a->feature_dim);
     }

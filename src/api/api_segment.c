@@ -57,7 +57,7 @@ static neuv_status patchnet_options_of(const neuv_segment_options *o, patchnet_o
 static neuv_status segment(const neuv_mesh *m, const neuv_segment_options *o, const patchnet_options *po,
                            int *face_chart, int *n, patchnet_report *rep, double *ops_seconds, int *hit)
 {
-    if (o->threads > 0) nn_set_threads(o->threads);
+    nn_set_threads(o->threads);
     double t0 = now_seconds();
     operators ops;
     operators_params p = operators_default_params();

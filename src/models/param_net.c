@@ -757,7 +757,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     memset(rep, 0, sizeof *rep);
     neuv_status s = check_input(m, face_chart, n_charts, vertex_features, feature_dim, o, corner_uv);
     if (s != NEUV_OK) return s;
-    if (o->threads > 0) nn_set_threads(o->threads);
+    nn_set_threads(o->threads);
     double t0 = now_seconds();
 
     train_data d;

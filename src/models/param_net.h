@@ -100,7 +100,7 @@ typedef struct param_net_options {
     long iso_pair_budget;
     param_psi_mode psi_mode;
     uint64_t seed;
-    int threads;            /* > 0: nn_set_threads(threads) before training; 0: leave as is */
+    int threads;            /* nn_set_threads(threads) before training (0: OpenMP's count as is) */
     int keep_model;         /* 1: the trained model is returned in report->model */
     /* Fine-tuning: start from this model's weights and ψ standardization
      * (same width, depth and ψ size) instead of a random initialization. */

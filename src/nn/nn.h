@@ -241,12 +241,14 @@ const char *nn_op_name(nn_op op);
 
 /* ---- threads --------------------------------------------------------- */
 
-/* Sets the OpenMP threads and the OpenBLAS threads together; n <= 0 means all
- * cores. Element-wise loops above a size threshold and large products both run
+/* Sets the OpenMP threads to n (n <= 0: leaves them as they are) and OpenBLAS
+ * to one thread. Element-wise loops above a size threshold and large products both run
  * on the OpenMP threads (a product is cut into row or column blocks, each one
  * single-threaded OpenBLAS call), because OpenBLAS's own pthread pool and
  * libgomp's pool spin-wait and steal each other's cores when they alternate.
- * OpenBLAS's thread count still applies to BLAS calls made outside nn. */
+ * OpenBLAS's own split of a product also depends on its thread count, which
+ * changed results at the last bits between thread counts; so every BLAS call,
+ * in nn or not, runs on one thread. */
 void nn_set_threads(int n);
 
 #endif

@@ -34,8 +34,6 @@ static void gemm(int ta, int tb, int m, int n, int k, const float *a, int lda, c
                     1.0f, a, lda, b, ldb, beta, c, ldc);
         return;
     }
-    int blas_threads = openblas_get_num_threads();
-    openblas_set_num_threads(1);
     int by_rows = m >= n, len = by_rows ? m : n;
     /* Several blocks per thread, handed out as threads free up: a thread that
      * the OS preempts delays one small block, not half the product. */
@@ -56,7 +54,6 @@ static void gemm(int ta, int tb, int m, int n, int k, const float *a, int lda, c
                         k, 1.0f, a, lda, bb, ldb, beta, c + lo, ldc);
         }
     }
-    openblas_set_num_threads(blas_threads);
 }
 
 nn_tensor *nn_matmul_t(nn_ctx *ctx, nn_tensor *a, int transpose_a, nn_tensor *b, int transpose_b)
@@ -165,8 +162,6 @@ nn_tensor *nn_linear_act(nn_ctx *ctx, nn_tensor *x, nn_tensor *w, nn_tensor *b, 
     float *y = t->data;
     /* Each chunk of rows is multiplied, then biased and activated while fresh:
      * one parallel section per layer; chunks go to threads as they free up. */
-    int blas_threads = openblas_get_num_threads();
-    if (threads > 1) openblas_set_num_threads(1);
     long chunks = threads > 1 ? BLOCKS_PER_THREAD * threads : 1;
     if (chunks > nblocks) chunks = nblocks;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
@@ -178,7 +173,6 @@ nn_tensor *nn_linear_act(nn_ctx *ctx, nn_tensor *x, nn_tensor *w, nn_tensor *b, 
                     xd + lo * in, (int)in, wd, (int)cols, 0.0f, y + lo * cols, (int)cols);
         bias_activation(y, bias, lo, hi, cols, act, leaky_slope);
     }
-    if (threads > 1) openblas_set_num_threads(blas_threads);
     return t;
 }
 
@@ -220,8 +214,6 @@ void nn_backward_linear(nn_ctx *ctx, nn_tensor *t)
     if (!gz || (gb && !part) || nn_ctx_status(ctx) != NEUV_OK) return;
     const float *wd = w->data;
     int threads = linear_threads((double)rows * cols * in, nblocks);
-    int blas_threads = openblas_get_num_threads();
-    if (threads > 1) openblas_set_num_threads(1);
     long chunks = threads > 1 ? BLOCKS_PER_THREAD * threads : 1;
     if (chunks > nblocks) chunks = nblocks;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
@@ -245,7 +237,6 @@ void nn_backward_linear(nn_ctx *ctx, nn_tensor *t)
             cblas_sgemm(CblasRowMajor, CblasNoTrans, CblasTrans, (int)(hi - lo), (int)in, (int)cols, 1.0f,
                         gz + lo * cols, (int)cols, wd, (int)cols, xacc ? 1.0f : 0.0f, gx + lo * in, (int)in);
     }
-    if (threads > 1) openblas_set_num_threads(blas_threads);
     if (gb)
         for (long j = 0; j < cols; j++) {
             double sum = 0;

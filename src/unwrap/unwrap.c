@@ -743,7 +743,7 @@ neuv_status unwrap_result_new(const neuv_unwrap_options *opts, struct neuv_unwra
         mem_free(r);
         return error_set(NEUV_ERR_INPUT, "the padding must be in 0..resolution/8 = 0..%d pixels (got %d)", res / 8, pad);
     }
-    if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
+    nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;
     *out = r;
     return NEUV_OK;
@@ -788,7 +788,7 @@ neuv_status unwrap_with_category(const neuv_mesh *mesh, const unwrap_model *cate
         r->opts.use_cache = opts->use_cache;
         r->opts.allow_overlaps = opts->allow_overlaps;
     }
-    if (r->opts.threads > 0) nn_set_threads(r->opts.threads);
+    nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;
     r->model.used = 1;
     r->model.category = 1;

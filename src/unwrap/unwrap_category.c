@@ -103,7 +103,7 @@ neuv_status unwrap_category_train(const neuv_mesh *const *meshes, int n, const n
     if (o.method != NEUV_METHOD_NEURAL)
         return error_set(NEUV_ERR_INPUT, "a category model is made of networks: the method must be neural");
     if (patch_iters < 0) return error_set(NEUV_ERR_INPUT, "PatchNet steps must be positive");
-    if (o.threads > 0) nn_set_threads(o.threads);
+    nn_set_threads(o.threads);
     double t_start = now_seconds(), t = t_start;
     rep->shapes = n;
 
