@@ -216,9 +216,9 @@ static void print_row(const char *name, double sec, int iters, int nc, const cha
         printf("| %s | %.2f | – | – | %d | – | – | %.4f | %.4f | %.4f |\n", name, sec, raw->flipped, raw->qce_mean,
                raw->qce_mean, raw->ase_abs_mean);
     if (rep)
-        fprintf(stderr, "  %s: params/MLP %ld, pairs %ld, plateau %d, loss %.5f (cycle %.2e iso %.2e angle %.2e area %.2e barrier %.2e warm %.2e), solve %d steps E %.3e -> %.3e, heads %d, cycle_rms %.4f, setup %.2fs, train %.2fs\n",
+        fprintf(stderr, "  %s: params/MLP %ld, pairs %ld, plateau %d, loss %.5f (cycle %.2e iso %.2e angle %.2e area %.2e barrier %.2e warm %.2e), solve %d steps E %.3e -> %.3e, heads %d (refit %d), cycle_rms %.4f, setup %.2fs, train %.2fs\n",
                 name, rep->parameters, rep->pairs, rep->stopped_on_plateau, rep->loss, rep->loss_cycle,
-                rep->loss_iso, rep->loss_angle, rep->loss_area, rep->loss_barrier, rep->loss_warm, rep->solve_steps, rep->solve_energy_before, rep->solve_energy_after, rep->heads_improved, rep->cycle_rms, rep->setup_seconds,
+                rep->loss_iso, rep->loss_angle, rep->loss_area, rep->loss_barrier, rep->loss_warm, rep->solve_steps, rep->solve_energy_before, rep->solve_energy_after, rep->heads_improved, rep->heads_refit, rep->cycle_rms, rep->setup_seconds,
                 rep->train_seconds);
     fflush(stdout);
 }
@@ -284,6 +284,7 @@ static void apply_key(param_net_options *o, const char *kv)
     else if (KEY("solve_fold")) o->solve_fold = v;
     else if (KEY("solve_fold_eps")) o->solve_fold_eps = v;
     else if (KEY("solve_mips")) o->solve_mips = (int)v;
+    else if (KEY("refit")) o->solve_refit = (int)v;
     else if (KEY("head_fourier")) o->head_fourier = (int)v;
     else if (KEY("subdivide")) o->solve_subdivide = (int)v;
     else if (KEY("refine")) g_refine.iters = (int)v;

@@ -41,8 +41,11 @@ T="$TMP/m2.obj"
 CAT="$TMP/cat.neuv"
 "$NEUV" train -o "$CAT" "$TMP/m0.obj" "$TMP/m1.obj" --iters 30 --patch-iters 20 --resolution 256 --refine 20 \
   --threads 1 --quiet || bad "train failed"
-# Two PatchNet patches, one network step: some charts fold (so --allow-overlaps shows).
+# Two PatchNet patches, one network step.
 NEURAL=(--charts 2 --iters 1 --resolution 128)
+# The same with the paper's networks (no per-chart heads, so no solve and no
+# second start that unfolds them): some charts fold, so --allow-overlaps shows.
+FOLDING=(--preset paper "${NEURAL[@]}")
 LSCM=(--method lscm --iters 20 --resolution 256)
 
 # run NAME ARGS...: neuv unwrap T -o NAME.obj --report NAME.json ARGS (stdout, stderr, rc kept).
@@ -102,10 +105,11 @@ PYEOF
 
 # ---- the runs without the option, one per mode ----------------------------
 run B --quiet "${NEURAL[@]}"
+run Bf --quiet "${FOLDING[@]}"
 run L --quiet "${LSCM[@]}"
 run Lv "${LSCM[@]}"                       # not quiet: the --quiet row's reference
 run C --quiet --model "$CAT"
-for b in B L Lv C; do [ "$(cat "$TMP/$b.rc")" -eq 0 ] || bad "reference run $b failed: $(cat "$TMP/$b.err")"; done
+for b in B Bf L Lv C; do [ "$(cat "$TMP/$b.rc")" -eq 0 ] || bad "reference run $b failed: $(cat "$TMP/$b.err")"; done
 
 # ---- plain ------------------------------------------------------------------
 effect plain --method B 'r["method"] == "lscm" and not same' --quiet "${NEURAL[@]}" --method lscm
@@ -127,8 +131,8 @@ effect plain --resolution L 'r["pack"]["resolution"] == 512 and not same' --quie
 P_RESOLUTION=$LAST
 effect plain --padding L 'r["pack"]["padding"] == 5 and not same' --quiet "${LSCM[@]}" --padding 5
 P_PADDING=$LAST
-effect plain --allow-overlaps B '"network_folded" in sources(r) and "lscm_after_fold" in sources(ref) and not same' \
-  --quiet "${NEURAL[@]}" --allow-overlaps
+effect plain --allow-overlaps Bf '"network_folded" in sources(r) and "lscm_after_fold" in sources(ref) and not same' \
+  --quiet "${FOLDING[@]}" --allow-overlaps
 P_ALLOW_OVERLAPS=$LAST
 effect plain --train-faces L 'r["model"]["trained_on_simplified_copy"] and "model" not in ref and not same' \
   --quiet "${LSCM[@]}" --train-faces 500
@@ -169,7 +173,7 @@ effect save --resolution "$P_RESOLUTION" 'same and cfg("s8.neuv")["resolution"] 
   --quiet "${LSCM[@]}" --resolution 512 --save-model "$TMP/s8.neuv"
 effect save --padding "$P_PADDING" 'same and cfg("s9.neuv")["padding"] == 5' \
   --quiet "${LSCM[@]}" --padding 5 --save-model "$TMP/s9.neuv"
-effect save --allow-overlaps "$P_ALLOW_OVERLAPS" 'same' --quiet "${NEURAL[@]}" --allow-overlaps --save-model "$TMP/s10.neuv"
+effect save --allow-overlaps "$P_ALLOW_OVERLAPS" 'same' --quiet "${FOLDING[@]}" --allow-overlaps --save-model "$TMP/s10.neuv"
 effect save --train-faces "$P_TRAIN_FACES" 'same and cfg("s11.neuv")["source_faces"] < r["input_faces"]' \
   --quiet "${LSCM[@]}" --train-faces 500 --save-model "$TMP/s11.neuv"
 effect save --no-cache L 'same and not r["patches"]["operators_cache_hit"]' \

@@ -65,6 +65,7 @@ void param_net_default_options(param_net_options *o, param_preset preset)
     o->head_fourier = 64;
     o->solve_subdivide = 1;
     o->chart_heads = 1;
+    o->solve_refit = 1;
     if (preset == PARAM_PRESET_PAPER) {
         o->width = 464;
         o->depth = 8;
@@ -75,6 +76,7 @@ void param_net_default_options(param_net_options *o, param_preset preset)
         o->warm_iters = 0;
         o->solve_steps = 0;
         o->chart_heads = 0;
+        o->solve_refit = 0;
         o->head_fourier = 0;
     }
 }
@@ -95,7 +97,7 @@ typedef struct train_data {
     param_corners corners;
     float *cos3d, *area3d;
     float *frame_inv, *conf_w; /* nf by 4, nf: conformal-energy targets (when solve_steps > 0) */
-    float *target;     /* nv by 2: the charts' LSCM maps in their frames (when warm_iters > 0) */
+    float *target;     /* nv by 2: the charts' LSCM maps in their frames (warm start; solve_refit) */
     geodesic_pairs pairs;   /* chart-vertex indices, normalized distances */
     float *feat;       /* nv by psi_dim per-vertex ψ (per-vertex mode) */
     float *psi;        /* n_charts by psi_dim (pooled mode) */
@@ -510,7 +512,12 @@ static neuv_status train_data_build(const neuv_mesh *m, const int *face_chart, i
     if (!d->rot || !d->vmesh || !d->vchart || !d->x || !d->tri || !d->fmesh || !d->fchart || !d->fcum || !d->cos3d ||
         !d->area3d || !d->center || !d->scale)
         return error_nomem("training data");
-    if (!skip_pairs && o->warm_iters > 0 && o->lambda_warm > 0 && !o->init) {
+    /* The charts' LSCM maps: the warm start's targets in training, and the
+     * second start of a head that folds (solve_refit), in training,
+     * fine-tuning and inference alike. */
+    int warm = !skip_pairs && o->warm_iters > 0 && o->lambda_warm > 0 && !o->init;
+    int refit = o->solve_refit && o->solve_steps > 0 && o->solve_fold > 0 && (o->chart_heads || o->infer_heads);
+    if (warm || refit) {
         d->target = mem_alloc((size_t)nv * 2 * sizeof(float));
         if (!d->target) return error_nomem("warm-start targets");
     }
@@ -842,7 +849,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
             loss = nn_add(ctx, loss, nn_scale(ctx, lfold, (float)o->lambda_fold));
         }
         nn_tensor *lwarm = NULL;
-        if (d.target && it < o->warm_iters && !o->init) { /* fine-tuning starts from the model instead */
+        if (d.target && it < o->warm_iters && o->lambda_warm > 0 && !o->init) { /* fine-tuning starts from the model instead */
             lwarm = param_loss_cycle(ctx, nn_view(ctx, d.nv, 2, d.target), nn_gather_rows(ctx, uv, b.vertex_rows, d.nv));
             loss = nn_add(ctx, loss, nn_scale(ctx, lwarm, (float)o->lambda_warm));
         }
@@ -886,7 +893,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     ctx = NULL;
     if (o->solve_steps > 0 && o->depth >= 2) {
         param_solve_data sd = {d.nv, d.nf, n_charts, d.x, d.x, 3, d.vchart, pooled ? d.psi : d.feat, d.psi_dim,
-                               !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w, 0, 0, NULL, 0};
+                               !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w, 0, 0, NULL, 0, NULL, 0};
         param_solve_report sr, hr;
         memset(&hr, 0, sizeof hr);
         s = param_output_solve_conformal(&model->f, &sd, o->solve_anchor, o->solve_steps, &sr);
@@ -898,6 +905,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
                 hd.fold_weight = o->solve_fold;
                 hd.fold_eps = o->solve_fold_eps;
                 hd.mips_steps = o->solve_mips;
+                if (o->solve_refit && d.target) { hd.fit_uv = d.target; hd.fit_nv = d.nv; }
                 param_solve_subdivided sub;
                 memset(&sub, 0, sizeof sub);
                 if (o->solve_subdivide && o->solve_fold > 0 && pooled) {
@@ -915,6 +923,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
         rep->solve_energy_after = model->heads ? hr.energy_after : sr.energy_after;
         rep->solve_steps = sr.steps;
         rep->heads_improved = hr.heads_improved;
+        rep->heads_refit = hr.heads_refit;
     }
     rep->train_seconds = now_seconds() - t1;
     ctx = nn_ctx_create(0);
@@ -952,10 +961,11 @@ static neuv_status solve_new_heads(const param_net_model *model, const train_dat
                                    float *heads)
 {
     param_solve_data sd = {d->nv, d->nf, d->n_charts, d->x, d->x, 3, d->vchart, d->psi, d->psi_dim, 0, d->tri,
-                           d->fchart, d->frame_inv, d->conf_w, o->solve_fold, o->solve_fold_eps, NULL, o->solve_mips};
+                           d->fchart, d->frame_inv, d->conf_w, o->solve_fold, o->solve_fold_eps, NULL, o->solve_mips, NULL, 0};
     param_solve_subdivided sub;
     memset(&sub, 0, sizeof sub);
     neuv_status s = NEUV_OK;
+    if (o->solve_refit && d->target) { sd.fit_uv = d->target; sd.fit_nv = d->nv; }
     if (o->solve_subdivide && o->solve_fold > 0 && (s = param_solve_subdivide(&sd, &sub)) == NEUV_OK) sd = sub.d;
     if (s == NEUV_OK) s = param_output_solve_heads(&model->f, &sd, o->solve_anchor, o->solve_steps, heads, NULL);
     param_solve_subdivided_free(&sub);

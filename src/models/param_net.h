@@ -77,6 +77,11 @@ typedef struct param_net_options {
      * conformal energy (param_solve_data; 0: off). */
     double solve_fold, solve_fold_eps;
     int solve_mips;
+    /* With chart_heads and warm_iters: a chart whose head still folds after
+     * its solve is solved again from the head fitted by least squares to its
+     * LSCM map (the warm-start target) over MLP_f's features
+     * (param_solve_data.fit_uv; 0: off). */
+    int solve_refit;
     /* Fourier directions the heads also read (param_mlp.h; 0: none). */
     int head_fourier;
     /* param_net_infer builds the conformal targets for solving heads. */
@@ -122,6 +127,7 @@ typedef struct param_net_report {
     double solve_energy_before, solve_energy_after; /* conformal energy around the output-layer solve */
     int solve_steps;        /* Gauss-Newton steps taken (shared output layer) */
     int heads_improved;     /* charts whose own output layer improved on the shared one */
+    int heads_refit;        /* charts whose head was solved from its fit to the LSCM map (solve_refit) */
     double setup_seconds, train_seconds, seconds;
     long pairs;             /* geodesic pairs under σ over all charts */
     int flipped;            /* faces whose UV orientation disagrees with their chart's */

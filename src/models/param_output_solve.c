@@ -536,13 +536,14 @@ typedef struct solve_state {
     int *face_start, *face_list, *vert_start, *vert_list; /* per-chart CSR */
     int *all_faces, *all_verts;
     vertex_eq eq;            /* the Gauss-Newton sums */
+    double *fit_mass;        /* nv, zero between uses: fit_head's vertex weights (only with d->fit_uv) */
 } solve_state;
 
 static void solve_state_free(solve_state *st)
 {
     mem_free(st->phi); mem_free(st->z); mem_free(st->uv); mem_free(st->uv0); mem_free(st->tz); mem_free(st->tuv); mem_free(st->mv);
     mem_free(st->sigma); mem_free(st->fold_s2); mem_free(st->face_start); mem_free(st->face_list); mem_free(st->vert_start); mem_free(st->vert_list);
-    mem_free(st->all_faces); mem_free(st->all_verts);
+    mem_free(st->all_faces); mem_free(st->all_verts); mem_free(st->fit_mass);
     vertex_eq_free(&st->eq);
 }
 
@@ -593,7 +594,8 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     st->all_faces = mem_alloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
     st->all_verts = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
     double *csum = mem_calloc((size_t)nc, sizeof(double));
-    if (!st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->fold_s2 || !st->face_start ||
+    if (d->fit_uv) st->fit_mass = mem_calloc((size_t)(nv > 0 ? nv : 1), sizeof(double));
+    if ((d->fit_uv && !st->fit_mass) || !st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->fold_s2 || !st->face_start ||
         !st->vert_start || !st->face_list || !st->vert_list || !st->all_faces || !st->all_verts || !csum) {
         mem_free(csum);
         return error_nomem("output-layer solve");
@@ -771,6 +773,131 @@ neuv_status param_output_solve_conformal(param_mlp *f, const param_solve_data *d
     return s;
 }
 
+/* The block's map at theta becomes its start: z, uv and uv0 (the anchor's
+ * reference), the chart's orientation σ and the barrier's scale s̄². */
+static void restart_block(solve_state *st, const block *b, int chart, const double *theta)
+{
+    const param_solve_data *d = st->d;
+    map_block(st->phi, st->H, theta, b, st->z, st->uv);
+    for (int k = 0; k < b->nv; k++) {
+        int v = b->verts[k];
+        st->uv0[2 * v] = st->uv[2 * v];
+        st->uv0[2 * v + 1] = st->uv[2 * v + 1];
+    }
+    double orient = 0, s2 = 0, w = 0;
+    for (int k = 0; k < b->nf; k++) {
+        int f = b->faces[k];
+        double wx[3], wy[3], J[4];
+        face_jacobian(d, f, st->uv, wx, wy, J);
+        double det = J[0] * J[3] - J[1] * J[2];
+        orient += fold_weight_of(d, f) * det;
+        s2 += d->face_w[f] * fabs(det);
+        w += d->face_w[f];
+    }
+    st->sigma[chart] = orient < 0 ? -1 : 1;
+    st->fold_s2[chart] = w > 0 ? s2 / w : 0;
+}
+
+/* Relative ridge of the least-squares fit of a head to target uvs (see
+ * fit_head): measured on the charts the networks fold (bench/RESULTS.md,
+ * "A second start for folded charts"). */
+#define FIT_RIDGE 1e-6
+
+/* theta = the head whose pre-tanh outputs fit atanh of the targets (d->fit_uv)
+ * at the block's vertices below d->fit_nv, each weighted by its share of the
+ * chart's area, by least squares with a ridge of FIT_RIDGE of the mean
+ * diagonal. Returns 1 when fitted, 0 when the block has no target or the
+ * system is singular, -1 on allocation failure. */
+static int fit_head(const solve_state *st, const block *b, double *theta)
+{
+    const param_solve_data *d = st->d;
+    int H = st->H, K = H + 1, n = 0;
+    double *mass = st->fit_mass;
+    for (int k = 0; k < b->nf; k++) {
+        const int *t = d->tri + 3 * b->faces[k];
+        for (int j = 0; j < 3; j++) mass[t[j]] += d->face_w[b->faces[k]] / 3;
+    }
+    normal_eq q;
+    double *rhs = mem_calloc(2 * (size_t)K, sizeof(double));
+    if (!rhs || normal_eq_init(&q, K, VERTEX_EQ_CHUNK) != NEUV_OK) { mem_free(rhs); n = -1; }
+    for (int k = 0; n >= 0 && k < b->nv; k++) {
+        int v = b->verts[k];
+        if (v >= d->fit_nv || !(mass[v] > 0)) continue;
+        double sw = sqrt(mass[v]), y[2];
+        for (int j = 0; j < 2; j++) {
+            double t = d->fit_uv[2 * v + j];
+            t = t > 0.995 ? 0.995 : t < -0.995 ? -0.995 : t;
+            y[j] = atanh(t);
+        }
+        double *c, *r = normal_eq_row(&q, &c);
+        const float *p = st->phi + (size_t)v * H;
+        for (int i = 0; i < H; i++) r[i] = sw * p[i];
+        r[H] = sw;
+        for (int i = 0; i < K; i++) { rhs[2 * i] += r[i] * sw * y[0]; rhs[2 * i + 1] += r[i] * sw * y[1]; }
+        n++;
+    }
+    int ok = 0;
+    if (n > 0) {
+        normal_eq_flush(&q);
+        double tr = 0;
+        for (int i = 0; i < K; i++) tr += q.a[(size_t)i * K + i];
+        for (int i = 0; i < K; i++) q.a[(size_t)i * K + i] += FIT_RIDGE * tr / K;
+        ok = normal_eq_solve(&q, 2, rhs) == 0;
+        if (ok)
+            for (int j = 0; j < 2; j++)
+                for (int i = 0; i < K; i++) theta[(size_t)j * K + i] = rhs[2 * i + j];
+    }
+    for (int k = 0; k < b->nv; k++) mass[b->verts[k]] = 0; /* zero again for the next chart */
+    if (n < 0) return -1;
+    normal_eq_free(&q);
+    mem_free(rhs);
+    return ok;
+}
+
+/* The faces of the block folded against its chart's orientation at the state's uv. */
+static int block_flips(const solve_state *st, const block *b)
+{
+    int fl;
+    block_energy(st->d, b, st->uv, st->sigma, NULL, &fl);
+    return fl;
+}
+
+/* A chart whose head folds after its solve from the shared layer: solved
+ * again from the head fitted to d->fit_uv; theta and the state keep that
+ * solve when it folds fewer faces. Returns 1 when kept, 0 when not, -1 on
+ * allocation failure. */
+static int solve_from_fit(solve_state *st, const block *b, int chart, double anchor, int steps, double *theta)
+{
+    int H = st->H, n = 2 * (H + 1), flips = block_flips(st, b);
+    double *fit = mem_alloc(sizeof(double) * (size_t)n), *keep = mem_alloc(sizeof(double) * 2 * (size_t)b->nv);
+    int sigma = st->sigma[chart];
+    double s2 = st->fold_s2[chart];
+    if (!fit || !keep) { mem_free(fit); mem_free(keep); return -1; }
+    int got = fit_head(st, b, fit), kept = 0;
+    if (got > 0) {
+        for (int k = 0; k < b->nv; k++) {
+            int v = b->verts[k];
+            for (int j = 0; j < 2; j++) keep[2 * k + j] = st->uv0[2 * v + j];
+        }
+        restart_block(st, b, chart, fit);
+        if (solve_block(st, b, anchor, steps, fit) < 0) got = -1;
+        else if (block_flips(st, b) < flips) {
+            memcpy(theta, fit, sizeof(double) * (size_t)n);
+            kept = 1;
+        } else { /* back to the first solve's map and references */
+            st->sigma[chart] = sigma;
+            st->fold_s2[chart] = s2;
+            for (int k = 0; k < b->nv; k++) {
+                int v = b->verts[k];
+                for (int j = 0; j < 2; j++) st->uv0[2 * v + j] = keep[2 * k + j];
+            }
+            map_block(st->phi, H, theta, b, st->z, st->uv);
+        }
+    }
+    mem_free(fit); mem_free(keep);
+    return got < 0 ? -1 : kept;
+}
+
 neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data *d, double anchor, int steps,
                                      float *heads, param_solve_report *rep)
 {
@@ -802,6 +929,11 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
                    st.face_start[c + 1] - st.face_start[c], st.vert_start[c + 1] - st.vert_start[c]};
         memcpy(theta, shared, sizeof(double) * (size_t)n);
         int taken = b.nf > 0 ? solve_block(&st, &b, anchor, steps, theta) : 0;
+        if (taken >= 0 && b.nf > 0 && d->fit_uv && block_flips(&st, &b) > 0) {
+            int refit = solve_from_fit(&st, &b, c, anchor, steps, theta);
+            if (refit < 0) taken = -1;
+            else if (refit) { rep->heads_refit++; taken = taken > 0 ? taken : 1; }
+        }
         if (taken < 0) { s = error_nomem("output-layer solve"); break; }
         rep->heads_improved += taken > 0;
         rep->steps += taken;

@@ -58,12 +58,22 @@ typedef struct param_solve_data {
      * s2/s1)/2, whose barrier at det J = 0 keeps every face unfolded
      * (0: none). */
     int mips_steps;
+    /* A second start for the per-chart heads (param_output_solve_heads): the
+     * vertices below fit_nv have a target map fit_uv (fit_nv by 2, MLP_f's
+     * output units; training gives each chart's LSCM map, its warm-start
+     * target). A chart whose head still folds faces after its solve from the
+     * shared layer is solved again from the head that fits these targets by
+     * least squares over the same features, and keeps whichever solve folds
+     * fewer faces (NULL: no second start). */
+    const float *fit_uv;
+    int fit_nv;
 } param_solve_data;
 
 typedef struct param_solve_report {
     double energy_before, energy_after; /* conformal term at the vertices, before and after */
     int steps;                          /* shared solve: Gauss-Newton steps kept */
     int heads_improved;                 /* per-chart solve: charts whose head moved from the shared one */
+    int heads_refit;                    /* per-chart solve: charts whose head came from the fit start (fit_uv) */
 } param_solve_report;
 
 /* The data with every face also split in four at its edge midpoints: each
