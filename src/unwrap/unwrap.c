@@ -532,6 +532,7 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
 {
     *features_out = NULL;
     *feature_dim_out = 0;
+    nn_set_threads(r->opts.threads);
     double t = now_seconds();
     r->input_vertices = in->nv;
     r->input_faces = in->nf;
