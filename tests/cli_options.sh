@@ -156,6 +156,10 @@ refused plain --shared-layer "${LSCM[@]}" --shared-layer
 # A budget below what training this mesh needs refuses it before training
 # starts (issue 20: memory); with enough budget the atlas is the plain run's.
 refused plain --max-memory "${LSCM[@]}" --max-memory 1 --train-faces 0
+effect plain --seam-angle L 'r["seams"]["required_edges"] == r["seams"]["above_angle"] > 0 == ref["seams"]["required_edges"] and r["seams"]["crossed"] == 0 and r["seams"]["angle"] == 10' \
+  --quiet "${LSCM[@]}" --seam-angle 10
+refused plain --seam-angle "${LSCM[@]}" --seam-angle 0
+refused plain --seam-angle "${LSCM[@]}" --seam-angle 10 --train-faces 500
 effect plain --max-memory L 'same' --quiet "${LSCM[@]}" --max-memory 100000
 
 # ---- save: the plain row's atlas, the option in the model -------------------
@@ -184,6 +188,7 @@ refused save --finetune "${LSCM[@]}" --finetune 3 --save-model "$TMP/x.neuv"
 refused save --check-inference "${LSCM[@]}" --check-inference --save-model "$TMP/x.neuv"
 refused save --lscm-baseline "${LSCM[@]}" --lscm-baseline --save-model "$TMP/x.neuv"
 refused save --shared-layer "${LSCM[@]}" --shared-layer --save-model "$TMP/x.neuv"
+refused save --seam-angle "${LSCM[@]}" --seam-angle 10 --save-model "$TMP/x.neuv"
 [ ! -e "$TMP/x.neuv" ] && ok || bad "a refused --save-model left $TMP/x.neuv"
 
 # ---- surface ------------------------------------------------------------------
@@ -207,7 +212,7 @@ effect surface --threads SA 'r["threads"] == 2 and same' --quiet --model "$S" --
 effect surface --quiet SA 'quiet and same' --model "$S" --quiet
 for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" "--max-memory 100" \
          "--resolution 512" "--padding 5" "--refine 0" "--allow-overlaps" "--finetune 3" "--shared-layer" \
-         "--save-model $TMP/x.neuv"; do
+         "--seam-angle 10" "--save-model $TMP/x.neuv"; do
   refused surface "${a%% *}" --model "$S" $a
 done
 [ ! -e "$TMP/x.neuv" ] && ok || bad "a refused --save-model left $TMP/x.neuv"
@@ -236,7 +241,7 @@ effect category --no-cache C 'not r["patches"]["operators_cache_hit"] and ref["p
   --quiet --model "$CAT" --no-cache
 effect category --threads C 'r["threads"] == 2' --quiet --model "$CAT" --threads 2
 for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" "--max-memory 100" \
-         "--check-inference" "--lscm-baseline" "--save-model $TMP/x.neuv"; do
+         "--check-inference" "--lscm-baseline" "--seam-angle 10" "--save-model $TMP/x.neuv"; do
   refused category "${a%% *}" --model "$CAT" $a
 done
 [ ! -e "$TMP/x.neuv" ] && ok || bad "a refused --save-model left $TMP/x.neuv"

@@ -494,11 +494,115 @@ static void test_pack_existing(void)
     neuv_atlas_destroy(a);
 }
 
+/* Whether the two faces of `atlas`'s mesh on edge (a, b) carry different
+ * UVs at a or at b (the edge is a seam of the atlas); -1 when the edge does
+ * not have two faces. */
+static int uv_split_at(const neuv_mesh *m, int a, int b)
+{
+    int nf = neuv_mesh_face_count(m);
+    int *tri = malloc(sizeof(int) * 3 * (size_t)nf);
+    double *uv = malloc(sizeof(double) * 6 * (size_t)nf);
+    neuv_mesh_get_indices(m, tri);
+    neuv_mesh_get_corner_uvs(m, uv);
+    int face[2], n = 0;
+    for (int f = 0; f < nf && n < 3; f++) {
+        int has_a = 0, has_b = 0;
+        for (int k = 0; k < 3; k++) { has_a |= tri[3 * f + k] == a; has_b |= tri[3 * f + k] == b; }
+        if (has_a && has_b) { if (n < 2) face[n] = f; n++; }
+    }
+    int split = -1;
+    if (n == 2) {
+        split = 0;
+        for (int v = 0; v < 2; v++) {
+            int w = v ? b : a;
+            const double *p = NULL, *q = NULL;
+            for (int k = 0; k < 3; k++) {
+                if (tri[3 * face[0] + k] == w) p = uv + 6 * face[0] + 2 * k;
+                if (tri[3 * face[1] + k] == w) q = uv + 6 * face[1] + 2 * k;
+            }
+            if (p[0] != q[0] || p[1] != q[1]) split = 1;
+        }
+    }
+    free(tri);
+    free(uv);
+    return split;
+}
+
+/* Seams given as vertex pairs: a ring around the cylinder's middle and the
+ * first column of its lower half. No chart crosses them (the two faces of
+ * every seam edge have different UVs at an end), the report counts them,
+ * and a pair that is no edge is counted as unmatched, not guessed. */
+static void test_user_seams(void)
+{
+    static grid g;
+    int around = 16, rows = 6;
+    make_cylinder(&g, around, rows, 0.5f, 0);
+    neuv_mesh_decl d;
+    decl_of(&g, &d);
+    int pairs[2 * 64], n = 0;
+    for (int a = 0; a < around; a++) { /* the ring of vertices at mid height */
+        pairs[2 * n] = 3 * around + a;
+        pairs[2 * n + 1] = 3 * around + (a + 1) % around;
+        n++;
+    }
+    for (int r = 0; r < 3; r++) { pairs[2 * n] = r * around; pairs[2 * n + 1] = (r + 1) * around; n++; }
+    pairs[2 * n] = 0; pairs[2 * n + 1] = 5 * around + 7; n++; /* no edge */
+    neuv_unwrap_options uo = quick_options(NEUV_METHOD_LSCM);
+    uo.charts = 1;
+    uo.seam_edges = pairs;
+    uo.seam_edge_count = n;
+    neuv_atlas *at = NULL;
+    CHECK(neuv_atlas_create(&at) == NEUV_OK);
+    CHECK(neuv_atlas_add_mesh(at, &d) == NEUV_OK);
+    CHECK(neuv_atlas_generate(at, &uo) == NEUV_OK);
+    const neuv_mesh *m = neuv_atlas_mesh(at);
+    CHECK_INT(neuv_mesh_vertex_count(m), g.nv); /* the copies along the seams are joined again */
+    for (int i = 0; i < n - 1; i++) CHECK_INT(uv_split_at(m, pairs[2 * i], pairs[2 * i + 1]), 1);
+    neuv_report rep;
+    CHECK(neuv_atlas_get_report(at, &rep) == NEUV_OK);
+    CHECK(rep.charts >= 2); /* the ring cuts the cylinder in two */
+    CHECK_INT(rep.metrics.flipped, 0);
+    CHECK(rep.metrics.overlap_fraction == 0);
+    char *json = neuv_atlas_report_json(at, "cylinder", 0, 0);
+    char want[160];
+    snprintf(want, sizeof want, "\"required_edges\":%d,\"above_angle\":0,\"user_pairs\":%d,"
+             "\"user_pairs_unmatched\":1,\"crossed\":0", n - 1, n);
+    CHECK(json && strstr(json, want));
+    if (json && !strstr(json, want)) fprintf(stderr, "  want %s in %s\n", want, strstr(json, "\"seams\""));
+    neuv_free(json);
+    neuv_atlas_destroy(at);
+
+    /* Without the seams the middle ring is crossed somewhere. */
+    uo.seam_edges = NULL;
+    uo.seam_edge_count = 0;
+    CHECK(neuv_atlas_create(&at) == NEUV_OK);
+    CHECK(neuv_atlas_add_mesh(at, &d) == NEUV_OK);
+    CHECK(neuv_atlas_generate(at, &uo) == NEUV_OK);
+    int crossed = 0;
+    for (int a = 0; a < around; a++) crossed += uv_split_at(neuv_atlas_mesh(at), pairs[2 * a], pairs[2 * a + 1]) == 0;
+    CHECK(crossed > 0);
+    neuv_atlas_destroy(at);
+
+    /* Refused: an index out of range; seams with a model to keep. */
+    uo.seam_edges = pairs;
+    uo.seam_edge_count = n;
+    pairs[1] = g.nv;
+    CHECK(neuv_atlas_create(&at) == NEUV_OK);
+    CHECK(neuv_atlas_add_mesh(at, &d) == NEUV_OK);
+    CHECK(neuv_atlas_generate(at, &uo) == NEUV_ERR_INPUT);
+    CHECK(strstr(neuv_last_error(), "seam edge 0") != NULL);
+    pairs[1] = 3 * around + 1;
+    uo.keep_model = 1;
+    CHECK(neuv_atlas_generate(at, &uo) == NEUV_ERR_INPUT);
+    neuv_atlas_destroy(at);
+}
+
 int main(void)
 {
     test_mesh_from_arrays();
     test_stages_and_generate();
     test_two_meshes();
+    test_user_seams();
     test_callbacks_and_cancel();
     test_models();
     test_pack_existing();

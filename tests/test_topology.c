@@ -1,8 +1,13 @@
 /* Topology: components, Euler characteristic, genus and ordered boundary
  * loops of whole meshes and of face subsets. */
+#include <stdlib.h>
+#include <string.h>
+
 #include "check.h"
 
 #include "mesh/shapes.h"
+#include "mesh/edge_faces.h"
+#include "mesh/seam_cut.h"
 #include "mesh/topology.h"
 
 /* 1 when loop[0..n) is a closed chain of boundary edges, each running in the
@@ -199,11 +204,71 @@ static void test_genus2(void)
     mesh_free(m);
 }
 
+/* Seams: a cube's 12 edges are its only edges above any angle in (0, 90)
+ * and none above 90; cut along them it falls into its six sides, each a
+ * disk of (n+1)^2 vertices; joined again it is the cube. A user pair given
+ * by positions finds its edge; a pair that is no edge is counted. */
+static void test_seam_cut(void)
+{
+    int n = 5;
+    neuv_mesh *m = shape_cube(n);
+    edge_faces ef;
+    CHECK(edge_faces_build(&ef, m) == 0);
+    unsigned char *seam = calloc((size_t)ef.ne, 1);
+    CHECK_INT(seam_mark_angle(m, &ef, 89.9, seam), 12 * n);
+    CHECK_INT(seam_mark_angle(m, &ef, 1.0, seam), 0); /* already marked: nothing new, faces are flat */
+    unsigned char *none = calloc((size_t)ef.ne, 1);
+    CHECK_INT(seam_mark_angle(m, &ef, 90.1, none), 0);
+    neuv_mesh *cut = NULL;
+    int *origin = NULL;
+    CHECK(mesh_cut_seams(m, &ef, seam, &cut, &origin) == NEUV_OK);
+    CHECK_INT(cut->nv, 6 * (n + 1) * (n + 1));
+    CHECK_INT(cut->nf, m->nf);
+    int *comp = malloc(sizeof(int) * (size_t)cut->nf);
+    CHECK_INT(mesh_face_components(cut, comp), 6);
+    for (int c = 0; c < 6; c++) {
+        component_topology t;
+        int f = 0;
+        while (comp[f] != c) f++;
+        CHECK(mesh_subset_topology(cut, comp, c, &t) == NEUV_OK);
+        CHECK(t.euler == 1 && t.boundary_loops == 1);
+        CHECK_INT(t.vertices, (n + 1) * (n + 1));
+    }
+    for (int v = 0; v < cut->nv; v++)
+        CHECK(!memcmp(cut->pos + 3 * v, m->pos + 3 * origin[v], sizeof(double) * 3));
+    mesh_join_seams(cut, origin, m->nv);
+    CHECK_INT(cut->nv, m->nv);
+    CHECK(!memcmp(cut->tri, m->tri, sizeof(int) * 3 * (size_t)m->nf));
+
+    /* By positions: the first edge of the cube's first face, and a pair of
+     * two vertices that share no edge (opposite corners of the cube). */
+    memset(seam, 0, (size_t)ef.ne);
+    double ends[12];
+    int a = m->tri[0], b = m->tri[1];
+    memcpy(ends, m->pos + 3 * a, sizeof(double) * 3);
+    memcpy(ends + 3, m->pos + 3 * b, sizeof(double) * 3);
+    double far0[3] = {-1, -1, -1}, far1[3] = {1, 1, 1};
+    memcpy(ends + 6, far0, sizeof far0);
+    memcpy(ends + 9, far1, sizeof far1);
+    int unmatched = -1;
+    CHECK_INT(seam_mark_positions(m, &ef, ends, 2, seam, &unmatched), 1);
+    CHECK_INT(unmatched, 1);
+    CHECK_INT(seam[ef.face_edge[0]], 1);
+    free(comp);
+    free(origin);
+    free(seam);
+    free(none);
+    mesh_free(cut);
+    edge_faces_free(&ef);
+    mesh_free(m);
+}
+
 int main(void)
 {
     test_grid();
     test_cylinder();
     test_sphere_and_torus();
     test_genus2();
+    test_seam_cut();
     return check_report("test_topology");
 }

@@ -85,6 +85,11 @@ class MeshArrays:
         M = np.array(obj.matrix_world, np.float64)
         self.V = co.reshape(-1, 3).astype(np.float64) @ M[:3, :3].T + M[:3, 3]
         self.loop_count = len(me.loops)
+        ev = np.empty(2 * len(me.edges), np.int32)
+        me.edges.foreach_get("vertices", ev)
+        marked = np.zeros(len(me.edges), bool)
+        me.edges.foreach_get("use_seam", marked)
+        self.seams = ev.reshape(-1, 2)[marked].astype(np.int64)  # edges marked as seams
         if t == 0:
             raise ValueError(f"{obj.name}: the mesh has no faces")
 
@@ -275,6 +280,11 @@ class NEUV_OT_unwrap(AtlasWriter, bpy.types.Operator):
                          description="Pixels between charts and to the border")
     use_cache: BoolProperty(name="Operator Cache", default=True,
                             description="Keep the geometry operators in neuv's on-disk cache")
+    use_seams: BoolProperty(name="Keep Marked Seams", default=True,
+                            description="Edges marked as seams are chart borders: no chart crosses them")
+    seam_angle: FloatProperty(name="Seam Angle", default=0.0, min=0.0, max=179.0,
+                              description="Edges whose faces' normals differ by more than this many degrees "
+                                          "are chart borders too; 0: none")
     uv_map: StringProperty(name="UV Map", default="neuv", description="The UV map written (added if missing)")
     into_active: BoolProperty(name="Into Active UV Map", default=False,
                               description="Write the active UV map instead of the one named above")
@@ -285,6 +295,20 @@ class NEUV_OT_unwrap(AtlasWriter, bpy.types.Operator):
 
     def pack_options(self):
         return {"resolution": self.resolution, "padding": self.padding}
+
+    def seam_options(self, meshes):
+        """seam_edges (numbered across the meshes, as the atlas numbers them)
+        and seam_angle. Seams need the networks trained on the meshes
+        themselves, so with seams train_faces is 0 (docs/api.md)."""
+        seams, offset = [], 0
+        for m in meshes:
+            if self.use_seams:
+                seams.append(m.seams + offset)
+            offset += len(m.V)
+        edges = np.concatenate(seams) if seams else np.empty((0, 2), np.int64)
+        if len(edges) == 0 and self.seam_angle == 0:
+            return {}
+        return {"seam_edges": edges, "seam_angle": self.seam_angle, "train_faces": 0}
 
     def execute(self, context):
         options = dict(method=self.method, preset=self.preset, charts=self.charts,
@@ -297,7 +321,7 @@ class NEUV_OT_unwrap(AtlasWriter, bpy.types.Operator):
             try:
                 for m in meshes:
                     atlas.add_mesh(m.V, m.tri_verts)
-                atlas.generate(**options)
+                atlas.generate(**options, **self.seam_options(meshes))
             except BaseException:
                 atlas.close()
                 raise

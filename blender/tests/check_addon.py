@@ -169,6 +169,50 @@ if ev.returncode == 0:
     check(cli["flipped"] == 0 == metrics["flipped"], "neuv eval: no flipped face, as the add-on says")
     check(cli["charts"] == metrics["charts"], "neuv eval: the add-on's chart count")
 
+# ---- Marked seams: the sphere's equator is a chart border ----------------
+def polygon_uvs_at(me, uv, vertex_pairs):
+    """For each edge (a, b): whether its two faces hold different UVs at a or b."""
+    corner = {}
+    for p in me.polygons:
+        for li in p.loop_indices:
+            corner[(p.index, me.loops[li].vertex_index)] = tuple(uv[li])
+    faces = {}
+    for p in me.polygons:
+        vs = set(p.vertices)
+        for a, b in vertex_pairs:
+            if a in vs and b in vs:
+                faces.setdefault((a, b), []).append(p.index)
+    return [len(faces.get((a, b), [])) == 2 and
+            (corner[(faces[(a, b)][0], a)] != corner[(faces[(a, b)][1], a)] or
+             corner[(faces[(a, b)][0], b)] != corner[(faces[(a, b)][1], b)]) for a, b in vertex_pairs]
+
+
+me = sphere.data
+equator = []
+for e in me.edges:
+    a, b = e.vertices
+    e.use_seam = abs(me.vertices[a].co.z) < 1e-6 and abs(me.vertices[b].co.z) < 1e-6
+    if e.use_seam:
+        equator.append((a, b))
+check(len(equator) == 24, f"the sphere's equator marked as a seam ({len(equator)} edges)")
+bpy.ops.object.select_all(action='DESELECT')
+sphere.select_set(True)
+bpy.context.view_layer.objects.active = sphere
+result = bpy.ops.uv.neuv_unwrap(method='lscm', iters=30, use_cache=False, charts=1)
+check(result == {'FINISHED'}, "Neural Unwrap with a marked seam finished")
+uv = np.empty(2 * len(me.loops), np.float32)
+me.uv_layers["neuv"].data.foreach_get("uv", uv)
+split = polygon_uvs_at(me, uv.reshape(-1, 2), equator)
+check(all(split), f"every marked seam edge is a chart border ({sum(split)} of {len(split)})")
+check_uvs(sphere, "marked seams")
+result = bpy.ops.uv.neuv_unwrap(method='lscm', iters=30, use_cache=False, charts=1, use_seams=False)
+me.uv_layers["neuv"].data.foreach_get("uv", uv)
+split = polygon_uvs_at(me, uv.reshape(-1, 2), equator)
+check(result == {'FINISHED'} and not all(split),
+      f"without Keep Marked Seams, one chart crosses the equator ({len(split) - sum(split)} edges)")
+for e in me.edges:
+    e.use_seam = False
+
 # ---- Pack (neuv), object mode, both objects' active UV maps ---------------
 for o in objects:
     o.select_set(True)

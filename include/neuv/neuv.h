@@ -259,6 +259,12 @@ typedef struct neuv_chart_options {
     int max_memory_mb;       /* training refuses (NEUV_ERR_NOMEM, before it starts) a mesh whose
                                 estimated peak memory is above this many MiB; 0 (default): half
                                 of the machine's physical memory */
+    /* Required seams: no chart crosses them (docs/report.md "seams"). */
+    double seam_angle;       /* > 0: every edge whose two faces' normals differ by more than this
+                                many degrees (a cube's edges: 90); 0 (default): none */
+    const int *seam_edges;   /* seam_edge_count pairs of vertex indices of the input mesh (of the
+                                meshes in the order added, for an atlas); read during the call */
+    int seam_edge_count;
 } neuv_chart_options;
 NEUV_API void neuv_chart_options_init(neuv_chart_options *o);
 
@@ -303,6 +309,13 @@ typedef struct neuv_unwrap_options {
                                 and apply the model to the mesh (0, the default: train on the mesh) */
     int max_memory_mb;       /* as in neuv_chart_options: the budget that training on the whole
                                 mesh (or on all of a category's shapes) must fit */
+    /* Required seams, as in neuv_chart_options. Not with keep_model, nor when the
+       networks train on a simplified copy (train_faces) */
+    double seam_angle;       /* > 0: every edge whose two faces' normals differ by more than this
+                                many degrees (a cube's edges: 90); 0 (default): none */
+    const int *seam_edges;   /* seam_edge_count pairs of vertex indices of the input mesh (of the
+                                meshes in the order added, for an atlas); read during the call */
+    int seam_edge_count;
 } neuv_unwrap_options;
 NEUV_API void neuv_unwrap_options_init(neuv_unwrap_options *o);
 

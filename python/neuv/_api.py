@@ -158,7 +158,10 @@ class Atlas:
 
     def compute_charts(self, *, progress=None, **options):
         """Stage 1: cleaning, operators, PatchNet charts. Options: preset,
-        charts, max_distortion, iters, seed, threads, use_cache."""
+        charts, max_distortion, iters, seed, threads, use_cache, seam_angle
+        (degrees: edges whose faces' normals differ by more are required seams),
+        seam_edges ((n, 2) vertex indices, numbered across the added meshes:
+        edges no chart crosses)."""
         o = _options.make(_capi.ChartOptions, options, _options.CHART, "Atlas.compute_charts")
         self._call(lib.neuv_atlas_compute_charts, byref(o), progress=progress)
 
@@ -257,7 +260,7 @@ def unwrap(V, F, *, model=None, return_report=False, progress=None, **options):
     Options (as `neuv unwrap`'s flags): method ('neural', 'lscm',
     'harmonic'), preset ('fast', 'paper'), charts ('auto' or K),
     max_distortion, iters, refine, seed, threads, resolution, padding,
-    allow_overlaps, use_cache, train_faces. With model (a Model or a path),
+    allow_overlaps, use_cache, train_faces, seam_angle, seam_edges. With model (a Model or a path),
     the model is applied instead of training, with Atlas.apply_model's
     options. progress(stage, fraction, detail) returns False to cancel
     (neuv.Cancelled)."""

@@ -69,6 +69,32 @@ def _apply_padding(name, value):
     return -1 if value is None else _integer(name, value)
 
 
+def _seam_angle(name, value):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"option {name} must be a number, got {value!r}")
+    if not 0 <= value < 180:
+        raise ValueError(f"option {name} must be an angle in degrees in [0, 180) (0: no seams), got {value!r}")
+    return float(value)
+
+
+def _set_seam_edges(struct, name, value):
+    """seam_edges: pairs of vertex indices, anything NumPy reads as (n, 2)
+    integers. The array lives on the struct (as _seam_edges) for as long as
+    the struct, so the pointer stays valid during the call."""
+    import numpy as np
+    edges = np.asarray(value)
+    if edges.size == 0:
+        edges = edges.reshape(0, 2)
+    if edges.ndim != 2 or edges.shape[1] != 2 or not np.issubdtype(edges.dtype, np.integer):
+        raise TypeError(f"option {name} must be pairs of vertex indices, shape (n, 2) integers, "
+                        f"got shape {edges.shape} of {edges.dtype}")
+    if len(edges) and (edges.min() < 0 or edges.max() > 2**31 - 1):
+        raise ValueError(f"option {name} holds an index out of range ({edges.min()}..{edges.max()})")
+    struct._seam_edges = np.ascontiguousarray(edges, dtype=np.int32)
+    struct.seam_edges = struct._seam_edges.ctypes.data if len(edges) else None
+    struct.seam_edge_count = len(edges)
+
+
 def _train_faces(name, value):
     value = _integer(name, value, 0)
     if 0 < value < 500:
@@ -92,6 +118,8 @@ CONVERTERS = {
     "use_cache": _flag,
     "keep_model": _flag,
     "train_faces": _train_faces,
+    "seam_angle": _seam_angle,
+    "seam_edges": None,  # two fields: _set_seam_edges
     "keep_scale": _flag,
     "check_inference": _flag,
     "lscm_baseline": _flag,
@@ -101,7 +129,8 @@ CONVERTERS = {
     "max_memory_mb": lambda n, v: _integer(n, v, 0),
 }
 
-CHART = ("preset", "charts", "max_distortion", "iters", "seed", "threads", "use_cache", "max_memory_mb")
+CHART = ("preset", "charts", "max_distortion", "iters", "seed", "threads", "use_cache", "max_memory_mb", "seam_angle",
+         "seam_edges")
 PARAM = ("method", "preset", "iters", "refine", "seed", "threads", "allow_overlaps")
 PACK = ("resolution", "padding")
 PACK_UVS = PACK + ("keep_scale",)
@@ -133,6 +162,9 @@ def fill(struct, options, allowed, where, converters=None):
     """Sets struct's fields from options (a dict) after checking them."""
     check_names(options, allowed, where)
     for name, value in options.items():
+        if name == "seam_edges":
+            _set_seam_edges(struct, name, value)
+            continue
         convert = (converters or {}).get(name, CONVERTERS[name])
         setattr(struct, name, convert(name, value))
     return struct

@@ -151,3 +151,57 @@ def test_pack_charts_touching_at_a_vertex():
     corners = neuv.pack(V, F, uv[F], resolution=64)
     assert corners.min() >= 0 and corners.max() <= 1 and not np.array_equal(corners[0, 0], corners[1, 0])
     assert neuv.evaluate(V, F, corners)["charts"] == 2
+
+
+def box(n=6):
+    """An axis-aligned cube, n by n quads per side, two triangles each."""
+    V, F, index = [], [], {}
+    for axis in range(3):
+        for side in (-1.0, 1.0):
+            ids = np.empty((n + 1, n + 1), int)
+            for i in range(n + 1):
+                for j in range(n + 1):
+                    p = [0.0, 0.0, 0.0]
+                    p[axis] = side
+                    p[(axis + 1) % 3] = -1 + 2 * i / n
+                    p[(axis + 2) % 3] = -1 + 2 * j / n
+                    ids[i, j] = index.setdefault(tuple(p), len(index))
+                    if ids[i, j] == len(V):
+                        V.append(p)
+            for i in range(n):
+                for j in range(n):
+                    a, b, c, d = ids[i, j], ids[i + 1, j], ids[i + 1, j + 1], ids[i, j + 1]
+                    F += [[a, b, c], [a, c, d]] if side > 0 else [[a, c, b], [a, d, c]]
+    return np.array(V), np.array(F)
+
+
+def test_seam_angle_keeps_the_cube_edges():
+    V, F = box()
+    vmapping, indices, uvs, report = neuv.unwrap(V, F, return_report=True, seam_angle=60, **QUICK)
+    assert report["seams"]["required_edges"] == 12 * 6 and report["seams"]["crossed"] == 0
+    # No output vertex (one UV) is shared by faces on two sides of the cube.
+    normals = np.round(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]), 9)
+    side = np.argmax(np.abs(normals), 1) * 2 + (normals.max(1) > 0)
+    owner = {}
+    for t, tri in enumerate(indices):
+        for v in tri:
+            assert owner.setdefault(int(v), side[t]) == side[t]
+    assert report["metrics"]["flipped"] == 0 and report["metrics"]["overlap_fraction"] == 0
+    with pytest.raises(ValueError):
+        neuv.unwrap(V, F, seam_angle=200, **QUICK)
+
+
+def test_seam_edges_are_never_crossed(mesh):
+    V, F = mesh
+    m = 12  # torus() rings: vertex i * m + j
+    ring = np.array([[5 * m + j, 5 * m + (j + 1) % m] for j in range(m)])
+    vmapping, indices, uvs, report = neuv.unwrap(V, F, return_report=True, seam_edges=ring, **QUICK)
+    assert report["seams"]["required_edges"] == m and report["seams"]["user_pairs"] == m
+    assert report["seams"]["crossed"] == 0
+    for a, b in ring:
+        faces = [t for t in range(len(F)) if a in F[t] and b in F[t]]
+        assert len(faces) == 2
+        out = [{int(F[t][k]): int(indices[t][k]) for k in range(3)} for t in faces]
+        assert out[0][a] != out[1][a] or out[0][b] != out[1][b]  # a different UV on each side
+    with pytest.raises(TypeError):
+        neuv.unwrap(V, F, seam_edges=[1, 2, 3], **QUICK)

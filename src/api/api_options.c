@@ -61,6 +61,9 @@ void api_options_set_charts(neuv_unwrap_options *u, const neuv_chart_options *o)
     u->threads = o->threads;
     u->use_cache = o->use_cache;
     u->max_memory_mb = o->max_memory_mb;
+    u->seam_angle = o->seam_angle;
+    u->seam_edges = o->seam_edges;
+    u->seam_edge_count = o->seam_edge_count;
 }
 
 void api_options_set_param(neuv_unwrap_options *u, const neuv_param_options *o)

@@ -30,6 +30,7 @@
 #include "unwrap/memory_budget.h"
 #include "unwrap/unwrap_apply.h"
 #include "unwrap/unwrap_model.h"
+#include "unwrap/unwrap_seams.h"
 
 void neuv_unwrap_options_init(neuv_unwrap_options *o)
 {
@@ -537,6 +538,7 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
     r->input_vertices = in->nv;
     r->input_faces = in->nf;
     neuv_status s = unwrap_clean_copy(in, &r->mesh, &r->clean);
+    if (s == NEUV_OK) s = unwrap_seams_cut(r, in, plan->keep_model, plan->apply != NULL);
     /* Not for a saved model, made or applied: its stored surface and chart
      * frames are in the mesh's own units. */
     if (s == NEUV_OK && !plan->apply && !plan->keep_model) {
@@ -673,6 +675,7 @@ neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r, const unwrap_plan *p
         scale_positions(r->mesh, -r->pos_exp);
         r->pos_exp = 0;
     }
+    if ((s = unwrap_seams_join(r)) != NEUV_OK) return s;
     /* The metrics of the mesh as `neuv eval` will read it back (positions welded). */
     double t = now_seconds();
     s = unwrap_metrics(r->mesh, &r->metrics);
@@ -722,6 +725,8 @@ neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_
     c->model.source_chart = copy_block(r->model.source_chart, sizeof(int) * nc, &failed);
     c->model.vertex_source_chart =
         copy_block(r->model.vertex_source_chart, sizeof(int) * (size_t)(r->mesh ? r->mesh->nv : 0), &failed);
+    c->seam_pair = copy_block(r->seam_pair, sizeof(int) * 2 * (size_t)r->seam_edges, &failed);
+    c->seam_origin = copy_block(r->seam_origin, sizeof(int) * (size_t)(r->mesh ? r->mesh->nv : 0), &failed);
     c->cap_repairs = c->repairs ? r->n_repairs : 0;
     if (failed) { neuv_unwrap_result_free(c); return error_nomem("a copy of the result"); }
     *out = c;
@@ -822,6 +827,8 @@ void neuv_unwrap_result_free(neuv_unwrap_result *r)
     mem_free(r->face_label);
     mem_free(r->model.source_chart);
     mem_free(r->model.vertex_source_chart);
+    mem_free(r->seam_pair);
+    mem_free(r->seam_origin);
     if (r->patchnet) patchnet_model_free(r->patchnet);
     mem_free(r->patchnet);
     param_net_model_free(r->param);

@@ -1400,6 +1400,10 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
         if (s) { neuv_unwrap_result_free(*out); *out = NULL; }
         return s;
     }
+    if (opts && (opts->seam_angle != 0 || opts->seam_edge_count != 0))
+        return error_set(NEUV_ERR_INPUT, "required seams (--seam-angle) need the networks trained on this mesh, "
+                                         "not on a simplified copy: it has %d faces, over train_faces %d "
+                                         "(--train-faces 0 trains on it)", mesh->nf, train_faces);
     double t = now_seconds();
     log_progress("simplify", 0, "%d faces to about %d", mesh->nf, train_faces);
     neuv_mesh *copy = mesh_clone(mesh);

@@ -63,6 +63,16 @@ struct neuv_unwrap_result {
     uv_metrics metrics;
     int cache_hit;
 
+    /* Required seams (mesh/seam_cut.h; opts.seam_angle, opts.seam_edges): the
+     * mesh is cut open along them from the charts stage to the metrics. */
+    int seam_edges;           /* required seam edges of the cleaned mesh */
+    int seam_edges_angle;     /* of which above opts.seam_angle */
+    int seam_unmatched;       /* pairs of opts.seam_edges that are no edge of the mesh */
+    int seam_crossed;         /* seam edges the final atlas joins (same UVs on both sides) */
+    int *seam_pair;           /* seam_edges by 2: their vertices in the cleaned mesh */
+    int *seam_origin;         /* while cut: the cleaned mesh's vertex each vertex copies; else NULL */
+    int seam_nv;              /* the cleaned mesh's vertex count */
+
     /* Kept for --save-model (NULL / 0 otherwise). */
     int *chart_net;           /* n_charts: network chart whose map chart c uses, -1 for a classic map */
     int *chart_mirrored;      /* n_charts: 1 when the injectivity check mirrored the chart before packing */

@@ -259,6 +259,16 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "split_trials"); json_int(&w, r->pack_split_trials);
     json_end_object(&w);
 
+    json_key(&w, "seams");
+    json_begin_object(&w);
+    json_key(&w, "angle"); json_number(&w, r->opts.seam_angle);
+    json_key(&w, "required_edges"); json_int(&w, r->seam_edges);
+    json_key(&w, "above_angle"); json_int(&w, r->seam_edges_angle);
+    json_key(&w, "user_pairs"); json_int(&w, r->opts.seam_edge_count);
+    json_key(&w, "user_pairs_unmatched"); json_int(&w, r->seam_unmatched);
+    json_key(&w, "crossed"); json_int(&w, r->seam_crossed);
+    json_end_object(&w);
+
     json_key(&w, "cleaning");
     write_cleaning(&w, &r->clean);
 
