@@ -160,6 +160,8 @@ effect plain --seam-angle L 'r["seams"]["required_edges"] == r["seams"]["above_a
   --quiet "${LSCM[@]}" --seam-angle 10
 refused plain --seam-angle "${LSCM[@]}" --seam-angle 0
 refused plain --seam-angle "${LSCM[@]}" --seam-angle 10 --train-faces 500
+effect plain --no-hard-edges L 'r["seams"]["hard_edges"] is False and ref["seams"]["hard_edges"] is True and same' \
+  --quiet "${LSCM[@]}" --no-hard-edges
 effect plain --max-memory L 'same' --quiet "${LSCM[@]}" --max-memory 100000
 
 # ---- save: the plain row's atlas, the option in the model -------------------
@@ -189,6 +191,8 @@ refused save --check-inference "${LSCM[@]}" --check-inference --save-model "$TMP
 refused save --lscm-baseline "${LSCM[@]}" --lscm-baseline --save-model "$TMP/x.neuv"
 refused save --shared-layer "${LSCM[@]}" --shared-layer --save-model "$TMP/x.neuv"
 refused save --seam-angle "${LSCM[@]}" --seam-angle 10 --save-model "$TMP/x.neuv"
+effect save --no-hard-edges L 'same and r["seams"]["hard_edges"] is False' --quiet "${LSCM[@]}" --no-hard-edges \
+  --save-model "$TMP/s15.neuv"
 [ ! -e "$TMP/x.neuv" ] && ok || bad "a refused --save-model left $TMP/x.neuv"
 
 # ---- surface ------------------------------------------------------------------
@@ -212,7 +216,7 @@ effect surface --threads SA 'r["threads"] == 2 and same' --quiet --model "$S" --
 effect surface --quiet SA 'quiet and same' --model "$S" --quiet
 for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" "--max-memory 100" \
          "--resolution 512" "--padding 5" "--refine 0" "--allow-overlaps" "--finetune 3" "--shared-layer" \
-         "--seam-angle 10" "--save-model $TMP/x.neuv"; do
+         "--seam-angle 10" "--no-hard-edges" "--save-model $TMP/x.neuv"; do
   refused surface "${a%% *}" --model "$S" $a
 done
 [ ! -e "$TMP/x.neuv" ] && ok || bad "a refused --save-model left $TMP/x.neuv"
@@ -241,7 +245,7 @@ effect category --no-cache C 'not r["patches"]["operators_cache_hit"] and ref["p
   --quiet --model "$CAT" --no-cache
 effect category --threads C 'r["threads"] == 2' --quiet --model "$CAT" --threads 2
 for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" "--max-memory 100" \
-         "--check-inference" "--lscm-baseline" "--seam-angle 10" "--save-model $TMP/x.neuv"; do
+         "--check-inference" "--lscm-baseline" "--seam-angle 10" "--no-hard-edges" "--save-model $TMP/x.neuv"; do
   refused category "${a%% *}" --model "$CAT" $a
 done
 [ ! -e "$TMP/x.neuv" ] && ok || bad "a refused --save-model left $TMP/x.neuv"

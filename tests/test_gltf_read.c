@@ -234,10 +234,45 @@ static void test_refused(void)
     expect_refused(text, "no triangles");
 }
 
+/* NORMAL turned with the node (a quarter turn about z) and each primitive's
+ * material: the first primitive names material 3, the second none (it
+ * becomes material 0 and 3 becomes 4). Accessor 0 serves as the normals. */
+static void test_normals_and_materials(void)
+{
+    unsigned char buf[128];
+    size_t n = make_buffer(buf);
+    write_tmp_file("geo.bin", buf, n);
+    char entry[64];
+    snprintf(entry, sizeof entry, "{\"byteLength\":%zu,\"uri\":\"geo.bin\"}", n);
+    const char *nodes = "\"nodes\":[{\"rotation\":[0,0,0.70710678118654752,0.70710678118654752],\"mesh\":0}],";
+    char text[4096];
+    snprintf(text, sizeof text, "%s", gltf_json(entry, ",{\"attributes\":{\"POSITION\":0,\"NORMAL\":0},\"indices\":2,\"mode\":6}", nodes));
+    const char *from = "\"TEXCOORD_0\":1},\"indices\":2,\"mode\":5}";
+    char *at = strstr(text, from);
+    CHECK(at != NULL);
+    if (!at) return;
+    char tail[4096];
+    snprintf(tail, sizeof tail, "\"TEXCOORD_0\":1,\"NORMAL\":0},\"indices\":2,\"mode\":5,\"material\":3}%s", at + strlen(from));
+    strcpy(at, tail);
+    neuv_mesh *m = load(write_tmp_file("marks.gltf", text, strlen(text)));
+    if (!m) return;
+    CHECK_INT(m->nn, 8);
+    CHECK(m->tri_normal && m->face_material);
+    if (m->nn == 8 && m->tri_normal && m->face_material) {
+        CHECK_NEAR(m->normal[3 * 1 + 0], 0, 1e-6); /* P[1] = (1, 0, 0) turned to (0, 1, 0) */
+        CHECK_NEAR(m->normal[3 * 1 + 1], 1, 1e-6);
+        CHECK_NEAR(m->normal[3 * 3 + 2], 0.5, 1e-6);
+        CHECK(m->tri_normal[0] == 0 && m->tri_normal[1] == 1 && m->tri_normal[2] == 2 && m->tri_normal[6] == 4);
+        CHECK(m->face_material[0] == 4 && m->face_material[1] == 4 && m->face_material[2] == 0 && m->face_material[3] == 0);
+    }
+    mesh_free(m);
+}
+
 int main(void)
 {
     test_external_tree();
     test_glb_and_scene();
     test_refused();
+    test_normals_and_materials();
     return check_report("test_gltf_read");
 }

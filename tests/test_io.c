@@ -98,7 +98,41 @@ static void test_obj_reader(void)
     CHECK_INT(m->nuv, 5);
     CHECK(m->tri_uv[3 * 1 + 2] == 3 && m->tri_uv[3 * 2 + 1] == 2 && m->tri_uv[3 * 2 + 2] == 4);
     CHECK(corner_uv(m, 2, 2)[0] == 0.5 && corner_uv(m, 2, 2)[1] == 0.25);
+    /* The quad's corners name normal 1, the triangle none: normals only when every face has them. */
+    CHECK_INT(m->nn, 0);
+    CHECK(m->face_material && m->face_material[0] == 0 && m->face_material[2] == 0);
     mesh_free(m);
+
+    /* Normals per corner and materials per face, in order of first use; a
+     * face before any usemtl gets material 0 and the named ones follow. */
+    m = load_ok(write_text("marks.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nvn 0 0.6 0.8\n"
+        "f 1//1 2//1 3//2\nusemtl steel \nf 2//2 4//2 3//2\nusemtl wood\nf 1//1 3//1 4//1\nusemtl steel\nf 1//-1 2//-2 4//1\n"));
+    if (m) {
+        CHECK_INT(m->nn, 2);
+        CHECK(m->normal[3 * 1 + 1] == 0.6 && m->normal[3 * 1 + 2] == 0.8);
+        CHECK(m->tri_normal[2] == 1 && m->tri_normal[3] == 1 && m->tri_normal[9] == 1 && m->tri_normal[10] == 0);
+        CHECK(m->face_material[0] == 0 && m->face_material[1] == 1 && m->face_material[2] == 2 &&
+              m->face_material[3] == 1);
+        mesh_free(m);
+    }
+    /* PLY vertex normals name each corner's normal by its vertex. */
+    m = load_ok(write_text("normals.ply",
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+        "property float nx\nproperty float ny\nproperty float nz\nelement face 1\n"
+        "property list uchar int vertex_indices\nend_header\n"
+        "0 0 0 0 0 1\n1 0 0 0 0 1\n1 1 0 0 0.6 0.8\n0 1 0 0 0 1\n4 0 1 2 3\n"));
+    if (m) {
+        CHECK_INT(m->nn, 4);
+        CHECK_NEAR(m->normal[3 * 2 + 1], 0.6, 1e-7);
+        CHECK_NEAR(m->normal[3 * 2 + 2], 0.8, 1e-7);
+        CHECK(m->tri_normal && m->tri_normal[0] == m->tri[0] && m->tri_normal[5] == m->tri[5]);
+        CHECK(m->face_material == NULL);
+        mesh_free(m);
+    }
+    /* A normal index out of range drops the normals, not the mesh. */
+    m = load_ok(write_text("badvn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//7\n"));
+    if (m) { CHECK_INT(m->nf, 1); CHECK_INT(m->nn, 0); CHECK(m->tri_normal == NULL); mesh_free(m); }
 
     /* v//vn corners and no vt at all: no UVs, no warning. */
     warnings = 0;

@@ -90,6 +90,8 @@ class MeshArrays:
         marked = np.zeros(len(me.edges), bool)
         me.edges.foreach_get("use_seam", marked)
         self.seams = ev.reshape(-1, 2)[marked].astype(np.int64)  # edges marked as seams
+        me.edges.foreach_get("use_edge_sharp", marked)
+        self.sharp = ev.reshape(-1, 2)[marked].astype(np.int64)  # edges marked sharp (hard edges)
         if t == 0:
             raise ValueError(f"{obj.name}: the mesh has no faces")
 
@@ -282,6 +284,8 @@ class NEUV_OT_unwrap(AtlasWriter, bpy.types.Operator):
                             description="Keep the geometry operators in neuv's on-disk cache")
     use_seams: BoolProperty(name="Keep Marked Seams", default=True,
                             description="Edges marked as seams are chart borders: no chart crosses them")
+    hard_edges: BoolProperty(name="Hard Edges", default=True,
+                             description="Edges marked sharp are chart borders too")
     seam_angle: FloatProperty(name="Seam Angle", default=0.0, min=0.0, max=179.0,
                               description="Edges whose faces' normals differ by more than this many degrees "
                                           "are chart borders too; 0: none")
@@ -297,13 +301,15 @@ class NEUV_OT_unwrap(AtlasWriter, bpy.types.Operator):
         return {"resolution": self.resolution, "padding": self.padding}
 
     def seam_options(self, meshes):
-        """seam_edges (numbered across the meshes, as the atlas numbers them)
-        and seam_angle. Seams need the networks trained on the meshes
+        """seam_edges (marked seams and sharp edges, numbered across the
+        meshes as the atlas numbers them) and seam_angle. Seams need the networks trained on the meshes
         themselves, so with seams train_faces is 0 (docs/api.md)."""
         seams, offset = [], 0
         for m in meshes:
             if self.use_seams:
                 seams.append(m.seams + offset)
+            if self.hard_edges:
+                seams.append(m.sharp + offset)
             offset += len(m.V)
         edges = np.concatenate(seams) if seams else np.empty((0, 2), np.int64)
         if len(edges) == 0 and self.seam_angle == 0:

@@ -265,6 +265,9 @@ typedef struct neuv_chart_options {
     const int *seam_edges;   /* seam_edge_count pairs of vertex indices of the input mesh (of the
                                 meshes in the order added, for an atlas); read during the call */
     int seam_edge_count;
+    int hard_edges;          /* 1 (default): the edges where the mesh's own corner normals differ
+                                (unless every corner has its face's normal: flat shading) and the
+                                borders between its materials are required seams too; 0: not */
 } neuv_chart_options;
 NEUV_API void neuv_chart_options_init(neuv_chart_options *o);
 
@@ -316,6 +319,9 @@ typedef struct neuv_unwrap_options {
     const int *seam_edges;   /* seam_edge_count pairs of vertex indices of the input mesh (of the
                                 meshes in the order added, for an atlas); read during the call */
     int seam_edge_count;
+    int hard_edges;          /* as in neuv_chart_options (default 1); where a model makes the charts
+                                they are left out and counted (neuv_report.hard_edges_not_kept),
+                                and with keep_model they are refused */
 } neuv_unwrap_options;
 NEUV_API void neuv_unwrap_options_init(neuv_unwrap_options *o);
 
@@ -442,6 +448,9 @@ typedef struct neuv_report {
     int moved_charts;                /* surface model: charts not where the model's atlas put them */
     int trained_on_copy;             /* train_faces: 1 when the networks trained on a simplified copy */
     int train_faces;                 /* ... of this many faces */
+    int seam_edges;                  /* required seam edges (hard edges, materials, seam_angle, seam_edges) */
+    int seams_crossed;               /* of which joined by the atlas (0 when all were kept) */
+    int hard_edges_not_kept;         /* hard and material edges of the file left out: a model's charts */
 } neuv_report;
 NEUV_API neuv_status neuv_atlas_get_report(const neuv_atlas *atlas, neuv_report *out);
 /* The JSON report (docs/report.md); release with neuv_free. input_name,

@@ -37,7 +37,8 @@ class MeshDecl(Structure):
 class ChartOptions(Structure):
     _fields_ = [("preset", c_int), ("charts", c_int), ("max_distortion", c_double), ("iters", c_int),
                 ("seed", c_ulonglong), ("threads", c_int), ("use_cache", c_int), ("max_memory_mb", c_int),
-                ("seam_angle", c_double), ("seam_edges", c_void_p), ("seam_edge_count", c_int)]
+                ("seam_angle", c_double), ("seam_edges", c_void_p), ("seam_edge_count", c_int),
+                ("hard_edges", c_int)]
 
 
 class ParamOptions(Structure):
@@ -54,7 +55,8 @@ class UnwrapOptions(Structure):
                 ("iters", c_int), ("refine", c_int), ("seed", c_ulonglong), ("threads", c_int),
                 ("resolution", c_int), ("padding", c_int), ("allow_overlaps", c_int), ("use_cache", c_int),
                 ("keep_model", c_int), ("train_faces", c_int), ("max_memory_mb", c_int),
-                ("seam_angle", c_double), ("seam_edges", c_void_p), ("seam_edge_count", c_int)]
+                ("seam_angle", c_double), ("seam_edges", c_void_p), ("seam_edge_count", c_int),
+                ("hard_edges", c_int)]
 
 
 class ApplyOptions(Structure):

@@ -120,6 +120,7 @@ CONVERTERS = {
     "train_faces": _train_faces,
     "seam_angle": _seam_angle,
     "seam_edges": None,  # two fields: _set_seam_edges
+    "hard_edges": _flag,
     "keep_scale": _flag,
     "check_inference": _flag,
     "lscm_baseline": _flag,
@@ -130,7 +131,7 @@ CONVERTERS = {
 }
 
 CHART = ("preset", "charts", "max_distortion", "iters", "seed", "threads", "use_cache", "max_memory_mb", "seam_angle",
-         "seam_edges")
+         "seam_edges", "hard_edges")
 PARAM = ("method", "preset", "iters", "refine", "seed", "threads", "allow_overlaps")
 PACK = ("resolution", "padding")
 PACK_UVS = PACK + ("keep_scale",)

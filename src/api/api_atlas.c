@@ -139,6 +139,7 @@ neuv_status neuv_atlas_add_loaded_mesh(neuv_atlas *a, const neuv_mesh *m)
     }
     memcpy(joined->pos + 3 * (size_t)nv0, m->pos, sizeof(double) * 3 * (size_t)m->nv);
     for (size_t c = 0; c < 3 * (size_t)m->nf; c++) joined->tri[3 * (size_t)nf0 + c] = m->tri[c] + nv0;
+    if (mesh_join_marks(joined, a->input, m) != NEUV_OK) { mesh_free(joined); return error_nomem("the mesh"); }
     mesh_free(a->input);
     a->input = joined;
     a->vertex_start[a->n_meshes] = nv0;
@@ -516,6 +517,9 @@ neuv_status neuv_atlas_get_report(const neuv_atlas *a, neuv_report *out)
     out->moved_charts = r->model.moved_charts;
     out->trained_on_copy = r->model.trained_on_copy;
     out->train_faces = r->model.train_faces;
+    out->seam_edges = r->seam_edges;
+    out->seams_crossed = r->seam_crossed;
+    out->hard_edges_not_kept = r->hard_edges_not_kept;
     if (a->stage == 3) memcpy(&out->metrics, &r->metrics, sizeof out->metrics);
     if (a->stage >= 2 && r->chart_source) {
         unwrap_chart_figures *cf = unwrap_chart_figures_compute(r);

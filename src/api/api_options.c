@@ -18,6 +18,7 @@ void neuv_chart_options_init(neuv_chart_options *o)
     o->threads = u.threads;
     o->use_cache = u.use_cache;
     o->max_memory_mb = u.max_memory_mb;
+    o->hard_edges = u.hard_edges;
 }
 
 void neuv_param_options_init(neuv_param_options *o)
@@ -64,6 +65,7 @@ void api_options_set_charts(neuv_unwrap_options *u, const neuv_chart_options *o)
     u->seam_angle = o->seam_angle;
     u->seam_edges = o->seam_edges;
     u->seam_edge_count = o->seam_edge_count;
+    u->hard_edges = o->hard_edges;
 }
 
 void api_options_set_param(neuv_unwrap_options *u, const neuv_param_options *o)

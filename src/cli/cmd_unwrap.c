@@ -13,7 +13,8 @@ static const char *usage_text =
     "                   [--preset fast|paper] [--iters N] [--refine N] [--seed S] [--threads T]\n"
     "                   [--resolution PX] [--padding PX] [--allow-overlaps] [--no-cache] [--quiet]\n"
     "                   [--save-model M.neuv] [--model M.neuv [--finetune N] [--check-inference] [--lscm-baseline]\n"
-    "                   [--shared-layer]] [--train-faces N] [--max-memory MIB] [--seam-angle DEG]\n";
+    "                   [--shared-layer]] [--train-faces N] [--max-memory MIB] [--seam-angle DEG]\n"
+    "                   [--no-hard-edges]\n";
 
 /* Above this many faces the networks train on a simplified copy and the model
  * is applied to the full mesh. Measured (bench/bench_train_faces.sh,
@@ -53,7 +54,7 @@ int cmd_unwrap(int argc, char **argv)
     int seed = -1, bad = 0, finetune = 0, refine = -1;
     /* The options a model cannot take, when given (their values may be the defaults). */
     int max_distortion_given = 0, iters_given = 0, resolution_given = 0, padding_given = 0, train_faces_given = 0;
-    int max_memory_given = 0, seam_angle_given = 0;
+    int max_memory_given = 0, seam_angle_given = 0, hard_edges_given = 0;
     job.train_faces = DEFAULT_TRAIN_FACES;
     for (int i = 1; i < argc && !bad; i++) {
         if (cli_arg_global(argc, argv, &i, &bad)) continue;
@@ -81,6 +82,7 @@ int cmd_unwrap(int argc, char **argv)
         if (!strcmp(argv[i], "--shared-layer")) { job.shared_layer = 1; continue; }
         if (!strcmp(argv[i], "--allow-overlaps")) { o.allow_overlaps = 1; continue; }
         if (!strcmp(argv[i], "--no-cache")) { o.use_cache = 0; continue; }
+        if (!strcmp(argv[i], "--no-hard-edges")) { o.hard_edges = 0; hard_edges_given = 1; continue; }
         if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) { fputs(usage_text, stdout); return 0; }
         if (argv[i][0] == '-' && argv[i][1]) return cli_error(NULL, "unwrap: unknown option '%s'", argv[i]);
         if (in) return cli_error(NULL, "unwrap takes one input file (got '%s' and '%s')", in, argv[i]);
@@ -147,6 +149,8 @@ int cmd_unwrap(int argc, char **argv)
                                  "and a model is applied"
             : seam_angle_given ? "--seam-angle cannot be used with --model: the charts come from the model, "
                                  "which does not record seams yet"
+            : hard_edges_given ? "--no-hard-edges cannot be used with --model: the charts come from the model, "
+                                 "and the file's hard edges are left out anyway (counted in the report)"
             : NULL;
         if (refused) return cli_error(job.model, "%s", refused);
         job.refine = refine;

@@ -15,7 +15,7 @@ typedef struct command {
 
 static const command commands[] = {
     /* Each command adds one line here, in the order of SPEC.md section 3. */
-    {"unwrap", cmd_unwrap, "unwrap IN [-o OUT] [--report R.json] [--preview PREFIX] [--method neural|lscm|harmonic] [--charts auto|K] [--preset fast|paper] [--iters N] [--refine N] [--seed S] [--threads T] [--resolution PX] [--padding PX] [--allow-overlaps] [--save-model M] [--model M [--finetune N] [--check-inference] [--lscm-baseline]] [--train-faces N] [--max-memory MIB] [--seam-angle DEG] [--quiet]"},
+    {"unwrap", cmd_unwrap, "unwrap IN [-o OUT] [--report R.json] [--preview PREFIX] [--method neural|lscm|harmonic] [--charts auto|K] [--preset fast|paper] [--iters N] [--refine N] [--seed S] [--threads T] [--resolution PX] [--padding PX] [--allow-overlaps] [--save-model M] [--model M [--finetune N] [--check-inference] [--lscm-baseline]] [--train-faces N] [--max-memory MIB] [--seam-angle DEG] [--no-hard-edges] [--quiet]"},
     {"eval", cmd_eval, "eval IN_WITH_UV [--json] [--preview PREFIX] [--preview-color chart|qce|area]"},
     {"pack", cmd_pack, "pack IN_WITH_UV -o OUT [--resolution PX] [--padding PX] [--keep-scale] [--preview PREFIX]   repack the charts of any UV map"},
     {"info", cmd_info, "info IN [--json]   vertices, faces, components, boundaries, genus, repairs"},

@@ -135,6 +135,10 @@ static int write_outputs(const neuv_atlas *atlas, const unwrap_job *job)
                job->input_name, rep.charts, sources, moved, mt->qce_mean, mt->flipped, mt->overlap_fraction,
                mt->packing_efficiency, job->load_seconds + rep.seconds_total + export_seconds, job->output);
         if (rep.repairs > 0) printf("  %d repairs (listed in the report)\n", rep.repairs);
+        if (rep.seam_edges > 0)
+            printf("  %d required seam edges (the report's seams), %d crossed\n", rep.seam_edges, rep.seams_crossed);
+        if (rep.hard_edges_not_kept > 0)
+            printf("  %d hard edges of the file not kept: the model made the charts\n", rep.hard_edges_not_kept);
         if (rep.trained_on_copy)
             printf("  trained on a simplified copy (%d of %d faces), model applied to the full mesh\n",
                    rep.train_faces, rep.faces);

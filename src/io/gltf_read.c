@@ -7,13 +7,16 @@
  * translation/rotation/scale), each mesh's primitives of mode TRIANGLES,
  * TRIANGLE_STRIP or TRIANGLE_FAN (points and lines are skipped: they are no
  * surface), POSITION (float VEC3), TEXCOORD_0 (float, or normalized unsigned
- * byte/short, VEC2; v flipped to neuv's bottom-left origin), indices
+ * byte/short, VEC2; v flipped to neuv's bottom-left origin), NORMAL (float
+ * VEC3, turned with the node; left out otherwise) and each primitive's
+ * material (they mark hard edges: mesh/hard_edges.h), indices
  * (unsigned byte/short/int). Buffers come from the GLB's BIN chunk, base64
  * data URIs, or files beside the .gltf. Refused with a message: sparse
  * accessors, accessors without a bufferView, Draco or other required
  * extensions, offsets or counts that leave their buffer, node trees that are
  * not trees. Vertices are never joined (mesh/clean.h welds). */
 #include <ctype.h>
+#include <limits.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -259,6 +262,16 @@ static neuv_status add_primitive(gltf_file *g, const json_value *prim, long long
             return bad("mesh %lld: TEXCOORD_0 is not float (or normalized unsigned) VEC2", (long long)mi);
         if (uv.count != pos.count) return bad("mesh %lld: TEXCOORD_0 and POSITION differ in count", (long long)mi);
     }
+    /* Normals only mark hard edges (mesh/hard_edges.h): one that is not float VEC3 is left out. */
+    accessor nrm;
+    int has_normal = json_get(attr, "NORMAL") != NULL;
+    if (has_normal) {
+        if ((s = get_accessor(g, json_get(attr, "NORMAL"), &nrm))) return s;
+        has_normal = nrm.comps == 3 && nrm.type == GL_FLOAT && nrm.count == pos.count;
+    }
+    long long material = -1;
+    if (json_get(prim, "material") && !json_int_in(json_get(prim, "material"), 0, INT_MAX / 2, &material))
+        return bad("mesh %lld: a primitive's material is not a material index", (long long)mi);
     int has_idx = json_get(prim, "indices") != NULL;
     if (has_idx) {
         if ((s = get_accessor(g, json_get(prim, "indices"), &idx))) return s;
@@ -270,13 +283,30 @@ static neuv_status add_primitive(gltf_file *g, const json_value *prim, long long
     g->vertices += pos.count;
 
     mesh_builder *b = g->b;
-    int base = b->nv, uv_base = b->nuv;
+    int base = b->nv, uv_base = b->nuv, normal_base = b->nn;
+    b->material = (int)material;
+    /* Normals go through the cofactor matrix of the node's linear part (the
+     * inverse transpose times the determinant), sign fixed so that a
+     * mirroring node keeps them pointing out of the faces it mirrors. */
+    double cof[3][3], det = 0;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) {
+            int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+            cof[r][c] = T->m[r1][c1] * T->m[r2][c2] - T->m[r1][c2] * T->m[r2][c1];
+        }
+    for (int c = 0; c < 3; c++) det += T->m[0][c] * cof[0][c];
+    double sign = det < 0 ? -1 : 1;
     double uv_scale = !has_uv || uv.type == GL_FLOAT ? 1 : uv.type == GL_UNSIGNED_BYTE ? 1.0 / 255 : 1.0 / 65535;
     for (long long i = 0; i < pos.count; i++) {
         double x = component(&pos, i, 0), y = component(&pos, i, 1), z = component(&pos, i, 2), q[3];
         for (int r = 0; r < 3; r++) q[r] = T->m[r][0] * x + T->m[r][1] * y + T->m[r][2] * z + T->m[r][3];
         s = mesh_builder_add_vertex(b, q[0], q[1], q[2]);
         if (s == NEUV_OK && has_uv) s = mesh_builder_add_uv(b, uv_scale * component(&uv, i, 0), 1.0 - uv_scale * component(&uv, i, 1));
+        if (s == NEUV_OK && has_normal) {
+            double nx = component(&nrm, i, 0), ny = component(&nrm, i, 1), nz = component(&nrm, i, 2), n[3];
+            for (int r = 0; r < 3; r++) n[r] = sign * (cof[r][0] * nx + cof[r][1] * ny + cof[r][2] * nz);
+            s = mesh_builder_add_normal(b, n[0], n[1], n[2]);
+        }
         if (s) return s;
     }
     long long n = has_idx ? idx.count : pos.count;
@@ -286,14 +316,16 @@ static neuv_status add_primitive(gltf_file *g, const json_value *prim, long long
         if (mode == 4) { k[0] = 3 * t; k[1] = 3 * t + 1; k[2] = 3 * t + 2; }
         else if (mode == 5) { k[0] = t + (t & 1); k[1] = t + 1 - (t & 1); k[2] = t + 2; } /* keep strips' winding */
         else { k[0] = 0; k[1] = t + 1; k[2] = t + 2; }
-        int v[3], w[3];
+        int v[3], w[3], nn[3];
         for (int c = 0; c < 3; c++) {
             long long vi = has_idx ? (long long)component(&idx, k[c], 0) : k[c];
             if (vi >= pos.count) return bad("mesh %lld: an index is past the vertex count", (long long)mi);
             v[c] = base + (int)vi;
             w[c] = uv_base + (int)vi;
+            nn[c] = normal_base + (int)vi;
         }
-        if ((s = mesh_builder_add_polygon(b, 3, v, has_uv ? w : NULL, g->faces++))) return s;
+        if ((s = mesh_builder_add_polygon_normals(b, 3, v, has_uv ? w : NULL, has_normal ? nn : NULL, g->faces++)))
+            return s;
     }
     return NEUV_OK;
 }

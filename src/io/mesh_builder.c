@@ -13,11 +13,16 @@
 /* nv and nf are ints everywhere in neuv, and index arithmetic uses 3*nf. */
 #define MAX_ITEMS ((size_t)INT_MAX / 4)
 
-void mesh_builder_init(mesh_builder *b) { memset(b, 0, sizeof *b); }
+void mesh_builder_init(mesh_builder *b)
+{
+    memset(b, 0, sizeof *b);
+    b->material = -1;
+}
 
 void mesh_builder_free(mesh_builder *b)
 {
     mem_free(b->pos); mem_free(b->uv); mem_free(b->tri); mem_free(b->tri_uv); mem_free(b->origin);
+    mem_free(b->normal); mem_free(b->tri_normal); mem_free(b->face_material);
     mem_free(b->scratch_pos); mem_free(b->scratch_xy); mem_free(b->scratch_idx); mem_free(b->scratch_tri);
     mesh_builder_init(b);
 }
@@ -50,10 +55,12 @@ static neuv_status grow_faces(mesh_builder *b, size_t need)
 {
     if (need > MAX_ITEMS) return error_set(NEUV_ERR_INPUT, "more than %zu triangles; too large for neuv", MAX_ITEMS);
     if (need <= b->cap_f) return NEUV_OK;
-    size_t c1 = b->cap_f, c2 = b->cap_f, c3 = b->cap_f;
+    size_t c1 = b->cap_f, c2 = b->cap_f, c3 = b->cap_f, c4 = b->cap_f, c5 = b->cap_f;
     if (!grow((void **)&b->tri, &c1, need, 3 * sizeof(int)) ||
         !grow((void **)&b->tri_uv, &c2, need, 3 * sizeof(int)) ||
-        !grow((void **)&b->origin, &c3, need, sizeof(int)))
+        !grow((void **)&b->origin, &c3, need, sizeof(int)) ||
+        !grow((void **)&b->tri_normal, &c4, need, 3 * sizeof(int)) ||
+        !grow((void **)&b->face_material, &c5, need, sizeof(int)))
         return error_nomem("faces");
     b->cap_f = c1;
     return NEUV_OK;
@@ -89,23 +96,46 @@ neuv_status mesh_builder_add_uv(mesh_builder *b, double u, double v)
     return NEUV_OK;
 }
 
-static void put_triangle(mesh_builder *b, int a, int c, int d, const int *uv, int ua, int uc, int ud, int origin)
+neuv_status mesh_builder_add_normal(mesh_builder *b, double x, double y, double z)
 {
-    int *t = b->tri + 3 * (size_t)b->nf, *tu = b->tri_uv + 3 * (size_t)b->nf;
-    t[0] = a; t[1] = c; t[2] = d;
-    if (uv) { tu[0] = ua; tu[1] = uc; tu[2] = ud; }
+    if ((size_t)b->nn >= b->cap_n) {
+        if ((size_t)b->nn + 1 > MAX_ITEMS) return error_set(NEUV_ERR_INPUT, "more than %zu normals; too large for neuv", MAX_ITEMS);
+        if (!grow((void **)&b->normal, &b->cap_n, (size_t)b->nn + 1, 3 * sizeof(double))) return error_nomem("normals");
+    }
+    double *p = b->normal + 3 * (size_t)b->nn++;
+    p[0] = x; p[1] = y; p[2] = z;
+    return NEUV_OK;
+}
+
+/* A triangle of polygon corners i, j, k. */
+static void put_triangle(mesh_builder *b, const int *v, const int *uv, const int *vn, int i, int j, int k, int origin)
+{
+    int *t = b->tri + 3 * (size_t)b->nf, *tu = b->tri_uv + 3 * (size_t)b->nf, *tn = b->tri_normal + 3 * (size_t)b->nf;
+    t[0] = v[i]; t[1] = v[j]; t[2] = v[k];
+    if (uv) { tu[0] = uv[i]; tu[1] = uv[j]; tu[2] = uv[k]; }
     else tu[0] = tu[1] = tu[2] = -1;
+    if (vn) { tn[0] = vn[i]; tn[1] = vn[j]; tn[2] = vn[k]; }
+    else tn[0] = tn[1] = tn[2] = -1;
+    b->face_material[b->nf] = b->material;
     b->origin[b->nf++] = origin;
 }
 
 neuv_status mesh_builder_add_polygon(mesh_builder *b, int n, const int *v, const int *uv, int origin)
 {
+    return mesh_builder_add_polygon_normals(b, n, v, uv, NULL, origin);
+}
+
+neuv_status mesh_builder_add_polygon_normals(mesh_builder *b, int n, const int *v, const int *uv, const int *vn,
+                                             int origin)
+{
     neuv_status s = grow_faces(b, (size_t)b->nf + (size_t)(n - 2));
     if (s != NEUV_OK) return s;
     if (uv) b->faces_with_uv++;
     else b->faces_without_uv++;
+    if (vn) b->faces_with_normal++;
+    else b->faces_without_normal++;
     if (n == 3) {
-        put_triangle(b, v[0], v[1], v[2], uv, uv ? uv[0] : 0, uv ? uv[1] : 0, uv ? uv[2] : 0, origin);
+        put_triangle(b, v, uv, vn, 0, 1, 2, origin);
         return NEUV_OK;
     }
     if ((size_t)n > b->cap_scratch) {
@@ -132,8 +162,7 @@ neuv_status mesh_builder_add_polygon(mesh_builder *b, int n, const int *v, const
     polygon_triangulate(n, b->scratch_pos, b->scratch_tri, b->scratch_xy, b->scratch_idx);
     for (int t = 0; t < n - 2; t++) {
         const int *c = b->scratch_tri + 3 * t;
-        put_triangle(b, v[c[0]], v[c[1]], v[c[2]], uv, uv ? uv[c[0]] : 0, uv ? uv[c[1]] : 0,
-                     uv ? uv[c[2]] : 0, origin);
+        put_triangle(b, v, uv, vn, c[0], c[1], c[2], origin);
     }
     return NEUV_OK;
 }
@@ -185,6 +214,24 @@ neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style st, neuv_mes
             }
     }
 
+    int keep_normals = b->nn > 0 && b->faces_with_normal > 0 && b->faces_without_normal == 0;
+    for (size_t k = 0; keep_normals && k < 3 * (size_t)b->nf; k++)
+        if (b->tri_normal[k] < 0 || b->tri_normal[k] >= b->nn) {
+            log_message(NEUV_LOG_WARN, "%s%d: a face references normal %d, but there are %d; normals dropped",
+                        st.origin_is_line ? "line " : "face ", b->origin[k / 3], b->tri_normal[k] + st.index_base,
+                        b->nn);
+            keep_normals = 0;
+        }
+    for (int i = 0; keep_normals && i < b->nn; i++) {
+        const double *p = b->normal + 3 * (size_t)i;
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
+            log_message(NEUV_LOG_WARN, "normal %d has a non-finite coordinate; normals dropped", i + st.index_base);
+            keep_normals = 0;
+        }
+    }
+    int any_material = 0;
+    for (int f = 0; f < b->nf && !any_material; f++) any_material = b->face_material[f] >= 0;
+
     neuv_mesh *m = mem_calloc(1, sizeof *m);
     if (!m) { s = error_nomem("a mesh"); goto done; }
     /* Hand the arrays over, shrunk to size (a failed shrink keeps the block). */
@@ -204,6 +251,18 @@ neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style st, neuv_mes
         if (up) m->uv = up;
         int *tup = mem_realloc(m->tri_uv, 3 * sizeof(int) * (size_t)m->nf);
         if (tup) m->tri_uv = tup;
+    }
+    if (keep_normals) {
+        m->nn = b->nn;
+        m->normal = b->normal; b->normal = NULL;
+        m->tri_normal = b->tri_normal; b->tri_normal = NULL;
+    }
+    if (any_material) { /* faces before the first material: material 0, the others after it */
+        int first_unnamed = 0;
+        for (int f = 0; f < b->nf; f++) first_unnamed |= b->face_material[f] < 0;
+        if (first_unnamed)
+            for (int f = 0; f < b->nf; f++) b->face_material[f]++;
+        m->face_material = b->face_material; b->face_material = NULL;
     }
     *out = m;
 done:

@@ -16,12 +16,19 @@ typedef struct mesh_builder {
     double *uv;            /* #UV by 2 */
     int nuv;
     size_t cap_uv;
+    double *normal;        /* #N by 3 */
+    int nn;
+    size_t cap_n;
     int *tri, *tri_uv;     /* #F by 3; tri_uv is -1 for faces given without UVs */
+    int *tri_normal;       /* #F by 3; -1 for faces given without normals */
+    int *face_material;    /* #F: `material` when the face was added */
+    int material;          /* the material of the faces added next (-1: none named yet) */
     int *origin;           /* #F: file face number (or line) each triangle came from */
     int nf;
     size_t cap_f;
     int faces_with_uv;     /* polygons given with UVs */
     int faces_without_uv;  /* polygons given without */
+    int faces_with_normal, faces_without_normal;
     /* scratch for triangulating polygons */
     double *scratch_pos, *scratch_xy;
     int *scratch_idx, *scratch_tri;
@@ -40,6 +47,7 @@ void mesh_builder_free(mesh_builder *b);
 neuv_status mesh_builder_reserve(mesh_builder *b, long long nv, long long nf);
 neuv_status mesh_builder_add_vertex(mesh_builder *b, double x, double y, double z);
 neuv_status mesh_builder_add_uv(mesh_builder *b, double u, double v);
+neuv_status mesh_builder_add_normal(mesh_builder *b, double x, double y, double z);
 /* Adds a polygon of n >= 3 corners, triangulated (see polygon_triangulate.h).
  * Inputs:
  *   v       n vertex indices (0-based; range checked in finish)
@@ -47,9 +55,15 @@ neuv_status mesh_builder_add_uv(mesh_builder *b, double u, double v);
  *   origin  number shown in messages about this face
  */
 neuv_status mesh_builder_add_polygon(mesh_builder *b, int n, const int *v, const int *uv, int origin);
+/* The same with normal indices per corner (vn may be NULL). */
+neuv_status mesh_builder_add_polygon_normals(mesh_builder *b, int n, const int *v, const int *uv, const int *vn,
+                                             int origin);
 /* Validates (faces present, finite coordinates, indices in range) and moves
  * the arrays into a new mesh; UVs are kept when every face has them (a
- * warning is logged when only some do). The builder is emptied either way. */
+ * warning is logged when only some do), normals likewise (dropped with a
+ * warning when an index is out of range or a normal not finite), face
+ * materials when any face has one (faces before the first get material 0
+ * with the others renumbered after it). The builder is emptied either way. */
 neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style style, neuv_mesh **out);
 
 #endif

@@ -21,11 +21,12 @@
  * *len excludes the NUL. NEUV_ERR_IO on a read error, NEUV_ERR_NOMEM. */
 neuv_status io_read_all(FILE *fp, char **data, size_t *len);
 
-/* Wavefront OBJ: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices). */
+/* Wavefront OBJ: v, vt, vn, f (v, v/vt, v//vn, v/vt/vn, negative indices),
+ * usemtl (a material per face); the rest is skipped. */
 neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out);
 /* OFF and its COFF/NOFF/STOFF variants, with # comments. */
 neuv_status io_read_off(const char *text, size_t len, neuv_mesh **out);
-/* PLY: ascii, binary_little_endian, binary_big_endian. */
+/* PLY: ascii, binary_little_endian, binary_big_endian; vertex normals nx, ny, nz. */
 neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out);
 /* glTF 2.0, as .gltf (JSON) or .glb (binary), with neuv's own reader
  * (gltf_read.c says what it reads and refuses). `dir`: the folder that

@@ -7,6 +7,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/error.h"
 #include "core/mem.h"
@@ -35,11 +36,11 @@ static int read_index(const char **p, long long *x)
 }
 
 typedef struct corner_buf {
-    int *v, *uv;
+    int *v, *uv, *vn;
     int n, cap;
 } corner_buf;
 
-static int corner_push(corner_buf *cb, int v, int uv)
+static int corner_push(corner_buf *cb, int v, int uv, int vn)
 {
     if (cb->n == cb->cap) {
         int c = cb->cap ? 2 * cb->cap : 16;
@@ -47,13 +48,53 @@ static int corner_push(corner_buf *cb, int v, int uv)
         if (a) cb->v = a;
         int *b = mem_realloc(cb->uv, sizeof(int) * (size_t)c);
         if (b) cb->uv = b;
-        if (!a || !b) return 0;
+        int *d = mem_realloc(cb->vn, sizeof(int) * (size_t)c);
+        if (d) cb->vn = d;
+        if (!a || !b || !d) return 0;
         cb->cap = c;
     }
     cb->v[cb->n] = v;
     cb->uv[cb->n] = uv;
+    cb->vn[cb->n] = vn;
     cb->n++;
     return 1;
+}
+
+/* Material names in order of first use (`usemtl`): a face's material is
+ * its index here. */
+typedef struct name_list {
+    char **name;
+    int n, cap;
+} name_list;
+
+static void name_list_free(name_list *l)
+{
+    for (int i = 0; i < l->n; i++) mem_free(l->name[i]);
+    mem_free(l->name);
+}
+
+/* The index of the name at p (up to the line end, trailing blanks cut),
+ * added when new; -1 when memory runs out. */
+static int name_index(name_list *l, const char *p)
+{
+    size_t len = 0;
+    while (p[len] && p[len] != '\n' && p[len] != '#') len++;
+    while (len > 0 && (p[len - 1] == ' ' || p[len - 1] == '\t' || p[len - 1] == '\r')) len--;
+    for (int i = 0; i < l->n; i++)
+        if (strlen(l->name[i]) == len && !memcmp(l->name[i], p, len)) return i;
+    if (l->n == l->cap) {
+        int c = l->cap ? 2 * l->cap : 8;
+        char **q = mem_realloc(l->name, sizeof(char *) * (size_t)c);
+        if (!q) return -1;
+        l->name = q;
+        l->cap = c;
+    }
+    char *copy = mem_alloc(len + 1);
+    if (!copy) return -1;
+    memcpy(copy, p, len);
+    copy[len] = '\0';
+    l->name[l->n] = copy;
+    return l->n++;
 }
 
 /* Turns a 1-based or negative (relative) OBJ index into a 0-based one. */
@@ -82,31 +123,39 @@ static neuv_status resolve(long long idx, int count, int line, const char *what,
 static neuv_status parse_face(text_cursor *c, mesh_builder *b, corner_buf *cb)
 {
     cb->n = 0;
-    int with_uv = 0, without_uv = 0;
+    int with_uv = 0, without_uv = 0, with_n = 0, without_n = 0;
     for (;;) {
         text_skip_blanks(c);
         const char *p = c->p;
         if (*p == '\n' || *p == '\0' || *p == '#') break;
         long long vi = 0, ti = 0, ni = 0;
-        int has_t = 0;
+        int has_t = 0, has_n = 0;
         int ok = read_index(&p, &vi);
         if (ok && *p == '/') {
             p++;
             if (*p != '/') { ok = read_index(&p, &ti); has_t = ok; }
-            if (ok && *p == '/') { p++; if (is_digit(*p) || *p == '-' || *p == '+') ok = read_index(&p, &ni); }
+            if (ok && *p == '/') {
+                p++;
+                if (is_digit(*p) || *p == '-' || *p == '+') { ok = read_index(&p, &ni); has_n = ok; }
+            }
         }
         if (!ok || !(*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n' || *p == '\0')) {
             char tok[32];
             text_token(c, tok);
             return error_set(NEUV_ERR_INPUT, "line %d: malformed face corner '%s'", c->line, tok);
         }
-        int v, t = -1;
+        int v, t = -1, nrm = -1;
         neuv_status s = resolve(vi, b->nv, c->line, "vertex", &v);
         if (s == NEUV_OK && has_t) s = resolve(ti, b->nuv, c->line, "texture coordinate", &t);
         if (s != NEUV_OK) return s;
+        /* A bad normal index drops the face's normals (they only mark seams),
+         * not the face: normals were never needed to read a surface. */
+        if (has_n && resolve(ni, b->nn, c->line, "normal", &nrm) != NEUV_OK) has_n = 0;
         if (has_t) with_uv++;
         else without_uv++;
-        if (!corner_push(cb, v, t)) return error_nomem("a face");
+        if (has_n) with_n++;
+        else without_n++;
+        if (!corner_push(cb, v, t, nrm)) return error_nomem("a face");
         c->p = p;
     }
     if (cb->n < 3)
@@ -114,7 +163,8 @@ static neuv_status parse_face(text_cursor *c, mesh_builder *b, corner_buf *cb)
                          cb->n, cb->n == 1 ? "" : "s");
     /* A face with texture coordinates on only some corners has none. */
     const int *uv = with_uv > 0 && without_uv == 0 ? cb->uv : NULL;
-    return mesh_builder_add_polygon(b, cb->n, cb->v, uv, c->line);
+    const int *vn = with_n > 0 && without_n == 0 ? cb->vn : NULL;
+    return mesh_builder_add_polygon_normals(b, cb->n, cb->v, uv, vn, c->line);
 }
 
 static neuv_status bad_number(text_cursor *c, const char *stmt)
@@ -124,6 +174,17 @@ static neuv_status bad_number(text_cursor *c, const char *stmt)
     return error_set(NEUV_ERR_INPUT, "line %d: malformed number '%s' in '%s'", c->line, tok, stmt);
 }
 
+/* The three numbers of statement `stmt` (v, vn). */
+static neuv_status read_triple(text_cursor *c, const char *stmt, double x[3])
+{
+    for (int k = 0; k < 3; k++) {
+        int r = text_read_double(c, &x[k]);
+        if (r < 0) return bad_number(c, stmt);
+        if (r == 0) return error_set(NEUV_ERR_INPUT, "line %d: '%s' needs 3 coordinates", c->line, stmt);
+    }
+    return NEUV_OK;
+}
+
 neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
 {
     (void)len;
@@ -131,6 +192,7 @@ neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
     mesh_builder b;
     mesh_builder_init(&b);
     corner_buf cb = {0};
+    name_list materials = {0};
     text_cursor c = {text, 1};
     neuv_status s = NEUV_OK;
     while (*c.p && s == NEUV_OK) {
@@ -139,12 +201,7 @@ neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
         if (statement(p, "v")) {
             c.p += 1;
             double x[3];
-            for (int k = 0; k < 3 && s == NEUV_OK; k++) {
-                int r = text_read_double(&c, &x[k]);
-                if (r < 0) s = bad_number(&c, "v");
-                else if (r == 0) s = error_set(NEUV_ERR_INPUT, "line %d: 'v' needs 3 coordinates", c.line);
-            }
-            if (s != NEUV_OK) break;
+            if ((s = read_triple(&c, "v", x)) != NEUV_OK) break;
             /* A 4th value (w) or vertex colours may follow; they are ignored. */
             if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]))
                 s = error_set(NEUV_ERR_INPUT, "line %d: vertex %d has a non-finite coordinate", c.line, b.nv + 1);
@@ -158,16 +215,27 @@ neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
             if (r > 0) r = text_read_double(&c, &t[1]); /* v is optional (1D textures) */
             if (r < 0) s = bad_number(&c, "vt");
             if (s == NEUV_OK) s = mesh_builder_add_uv(&b, t[0], t[1]);
+        } else if (statement(p, "vn")) {
+            c.p += 2;
+            double x[3];
+            if ((s = read_triple(&c, "vn", x)) == NEUV_OK) s = mesh_builder_add_normal(&b, x[0], x[1], x[2]);
+        } else if (statement(p, "usemtl")) {
+            c.p += 6;
+            text_skip_blanks(&c);
+            b.material = name_index(&materials, c.p);
+            if (b.material < 0) s = error_nomem("material names");
         } else if (statement(p, "f")) {
             c.p += 1;
             s = parse_face(&c, &b, &cb);
         }
-        /* Everything else (vn, vp, o, g, s, usemtl, mtllib, l, p, comments)
-         * does not change the surface. */
+        /* Everything else (vp, o, g, s, mtllib, l, p, comments) does not
+         * change the surface or its seams. */
         text_next_line(&c);
     }
     mem_free(cb.v);
     mem_free(cb.uv);
+    mem_free(cb.vn);
+    name_list_free(&materials);
     if (s != NEUV_OK) { mesh_builder_free(&b); return s; }
     mesh_builder_style style = {1, 1};
     return mesh_builder_finish(&b, style, out);

@@ -44,7 +44,8 @@ static size_t type_size(ply_type t)
     }
 }
 
-typedef enum ply_role { R_NONE, R_X, R_Y, R_Z, R_U, R_V, R_FACE_VERTICES, R_FACE_TEXCOORD } ply_role;
+typedef enum ply_role { R_NONE, R_X, R_Y, R_Z, R_U, R_V, R_FACE_VERTICES, R_FACE_TEXCOORD, R_NX, R_NY, R_NZ,
+                        R_COUNT } ply_role;
 
 typedef struct ply_prop {
     ply_type type, count_type; /* count_type != T_NONE for a list */
@@ -130,6 +131,9 @@ static ply_role role_of(ply_kind kind, const char *name, int is_list)
             return R_U;
         if (!strcmp(name, "t") || !strcmp(name, "v") || !strcmp(name, "texture_v") || !strcmp(name, "texture_t"))
             return R_V;
+        if (!strcmp(name, "nx")) return R_NX;
+        if (!strcmp(name, "ny")) return R_NY;
+        if (!strcmp(name, "nz")) return R_NZ;
     }
     if (kind == K_FACE && is_list) {
         if (!strcmp(name, "vertex_indices") || !strcmp(name, "vertex_index")) return R_FACE_VERTICES;
@@ -285,18 +289,20 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
     mesh_builder_init(&b);
     face_scratch fs = {0};
     int vertex_uv = 0;      /* the vertex element has UV properties */
+    int vertex_normal = 0;  /* ... normal properties (nx, ny, nz) */
     long long nverts = 0;   /* vertices declared */
     int face_texcoord = 0;  /* the face element has a texcoord list */
     for (int ei = 0; ei < h.nelems && s == NEUV_OK; ei++) {
         const ply_element *e = &h.elems[ei];
         if (e->kind == K_VERTEX) {
-            int have[8] = {0};
+            int have[R_COUNT] = {0};
             for (int k = 0; k < e->nprops; k++) have[e->props[k].role] = 1;
             if (!have[R_X] || !have[R_Y] || !have[R_Z]) {
                 s = error_set(NEUV_ERR_INPUT, "the PLY vertex element has no x, y, z properties");
                 break;
             }
             vertex_uv = have[R_U] && have[R_V];
+            vertex_normal = have[R_NX] && have[R_NY] && have[R_NZ];
             nverts = e->count;
             long long room = h.format == F_ASCII ? (long long)(len / 6) + 16 : (long long)(len / 12) + 16;
             s = mesh_builder_reserve(&b, e->count < room ? e->count : room, 0);
@@ -315,7 +321,7 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
         }
         if (s != NEUV_OK || e->nprops == 0) continue;
         for (long long i = 0; i < e->count && s == NEUV_OK; i++) {
-            double x[6] = {0};
+            double x[R_COUNT] = {0};
             int nc = 0, ntc = -1;
             for (int k = 0; k < e->nprops && s == NEUV_OK; k++) {
                 const ply_prop *pr = &e->props[k];
@@ -363,6 +369,7 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
             if (e->kind == K_VERTEX) {
                 s = mesh_builder_add_vertex(&b, x[R_X], x[R_Y], x[R_Z]);
                 if (s == NEUV_OK && vertex_uv) s = mesh_builder_add_uv(&b, x[R_U], x[R_V]);
+                if (s == NEUV_OK && vertex_normal) s = mesh_builder_add_normal(&b, x[R_NX], x[R_NY], x[R_NZ]);
             } else if (e->kind == K_FACE) {
                 if (nc < 3) {
                     s = error_set(NEUV_ERR_INPUT, "face %lld has %d corners; a face needs at least 3", i, nc);
@@ -378,7 +385,8 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
                 } else if (!face_texcoord && vertex_uv) {
                     uv = fs.v;
                 }
-                if (s == NEUV_OK) s = mesh_builder_add_polygon(&b, nc, fs.v, uv, (int)i);
+                if (s == NEUV_OK)
+                    s = mesh_builder_add_polygon_normals(&b, nc, fs.v, uv, vertex_normal ? fs.v : NULL, (int)i);
             }
         }
     }

@@ -406,10 +406,15 @@ neuv_status mesh_clean(neuv_mesh *m, const mesh_clean_options *opts, mesh_clean_
     neuv_status st = validate(m);
     if (st != NEUV_OK) return st;
 
-    /* Work on a copy so that m is untouched when we refuse or run out of memory. */
+    /* Work on a copy so that m is untouched when we refuse or run out of memory.
+     * The file's normals and materials are not carried through the repairs:
+     * a cleaned mesh has none (the seams they mark are found on the input,
+     * unwrap/unwrap_seams.c). */
     neuv_mesh *w = mesh_clone(m);
     int *rep = mem_alloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
     if (!w || !rep) { mesh_free(w); mem_free(rep); return error_nomem("mesh copy"); }
+    mesh_set_normals(w, 0, NULL, NULL);
+    mesh_set_face_material(w, NULL);
 
     st = NEUV_OK;
     int welded = weld(w, rep);
@@ -440,5 +445,7 @@ neuv_status mesh_clean(neuv_mesh *m, const mesh_clean_options *opts, mesh_clean_
     m->nv = w->nv; m->nf = w->nf;
     w->pos = NULL; w->tri = NULL; w->tri_uv = NULL;
     mesh_free(w);
+    mesh_set_normals(m, 0, NULL, NULL);
+    mesh_set_face_material(m, NULL);
     return NEUV_OK;
 }

@@ -37,7 +37,8 @@ int mesh_weld_positions(neuv_mesh *m);
  * each fan of faces after the first (in face order) gets its own copy.
  * Open components keep the orientation of most of their faces; closed
  * ones point outward (positive signed volume). Non-orientable components
- * are left as they are and counted. UVs stay with their corners.
+ * are left as they are and counted. UVs stay with their corners; the
+ * file's normals and face materials are dropped.
  * On error m is unchanged: NEUV_ERR_INPUT for out-of-range indices or, with
  * split_nonmanifold == 0, a non-manifold edge or vertex (input numbering).
  * Runs in O(F) expected time. */

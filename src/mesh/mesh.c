@@ -35,7 +35,40 @@ neuv_mesh *mesh_clone(const neuv_mesh *m)
         memcpy(c->uv, m->uv, sizeof(double) * 2 * (size_t)m->nuv);
         memcpy(c->tri_uv, m->tri_uv, sizeof(int) * 3 * (size_t)m->nf);
     }
+    if (mesh_set_normals(c, m->nn, m->normal, m->tri_normal) != NEUV_OK ||
+        mesh_set_face_material(c, m->face_material) != NEUV_OK) {
+        mesh_free(c);
+        return NULL;
+    }
     return c;
+}
+
+neuv_status mesh_set_normals(neuv_mesh *m, int nn, const double *normal, const int *tri_normal)
+{
+    mem_free(m->normal); mem_free(m->tri_normal);
+    m->normal = NULL; m->tri_normal = NULL; m->nn = 0;
+    if (nn <= 0 || !normal || !tri_normal) return NEUV_OK;
+    m->normal = mem_alloc(sizeof(double) * 3 * (size_t)nn);
+    m->tri_normal = mem_alloc(sizeof(int) * 3 * (size_t)(m->nf > 0 ? m->nf : 1));
+    if (!m->normal || !m->tri_normal) {
+        mem_free(m->normal); mem_free(m->tri_normal); m->normal = NULL; m->tri_normal = NULL;
+        return error_nomem("normals");
+    }
+    m->nn = nn;
+    memcpy(m->normal, normal, sizeof(double) * 3 * (size_t)nn);
+    memcpy(m->tri_normal, tri_normal, sizeof(int) * 3 * (size_t)m->nf);
+    return NEUV_OK;
+}
+
+neuv_status mesh_set_face_material(neuv_mesh *m, const int *face_material)
+{
+    mem_free(m->face_material);
+    m->face_material = NULL;
+    if (!face_material) return NEUV_OK;
+    m->face_material = mem_alloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
+    if (!m->face_material) return error_nomem("face materials");
+    memcpy(m->face_material, face_material, sizeof(int) * (size_t)m->nf);
+    return NEUV_OK;
 }
 
 neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_uv)
@@ -55,10 +88,46 @@ neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_
     return NEUV_OK;
 }
 
+/* Materials used by m: the largest id + 1, or 1 when it has none. */
+static int material_count(const neuv_mesh *m)
+{
+    int n = 1;
+    for (int f = 0; m->face_material && f < m->nf; f++)
+        if (m->face_material[f] + 1 > n) n = m->face_material[f] + 1;
+    return n;
+}
+
+neuv_status mesh_join_marks(neuv_mesh *joined, const neuv_mesh *a, const neuv_mesh *b)
+{
+    int nfa = a ? a->nf : 0;
+    mesh_set_normals(joined, 0, NULL, NULL);
+    mesh_set_face_material(joined, NULL);
+    if ((!a || a->nn > 0) && b->nn > 0) {
+        int nna = a ? a->nn : 0;
+        joined->normal = mem_alloc(sizeof(double) * 3 * (size_t)(nna + b->nn));
+        joined->tri_normal = mem_alloc(sizeof(int) * 3 * (size_t)(joined->nf > 0 ? joined->nf : 1));
+        if (!joined->normal || !joined->tri_normal) { mesh_set_normals(joined, 0, NULL, NULL); return error_nomem("normals"); }
+        joined->nn = nna + b->nn;
+        if (a) memcpy(joined->normal, a->normal, sizeof(double) * 3 * (size_t)nna);
+        memcpy(joined->normal + 3 * (size_t)nna, b->normal, sizeof(double) * 3 * (size_t)b->nn);
+        if (a) memcpy(joined->tri_normal, a->tri_normal, sizeof(int) * 3 * (size_t)nfa);
+        for (size_t c = 0; c < 3 * (size_t)b->nf; c++) joined->tri_normal[3 * (size_t)nfa + c] = b->tri_normal[c] + nna;
+    }
+    if ((a && a->face_material) || b->face_material) {
+        joined->face_material = mem_alloc(sizeof(int) * (size_t)(joined->nf > 0 ? joined->nf : 1));
+        if (!joined->face_material) return error_nomem("face materials");
+        for (int f = 0; f < nfa; f++) joined->face_material[f] = a->face_material ? a->face_material[f] : 0;
+        int first = a ? material_count(a) : 0;
+        for (int f = 0; f < b->nf; f++) joined->face_material[nfa + f] = first + (b->face_material ? b->face_material[f] : 0);
+    }
+    return NEUV_OK;
+}
+
 void mesh_free(neuv_mesh *m)
 {
     if (!m) return;
     mem_free(m->pos); mem_free(m->tri); mem_free(m->uv); mem_free(m->tri_uv);
+    mem_free(m->normal); mem_free(m->tri_normal); mem_free(m->face_material);
     mem_free(m);
 }
 

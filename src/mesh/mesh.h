@@ -16,6 +16,12 @@ struct neuv_mesh {
     int nuv;
     double *uv;  /* #UV by 2 */
     int *tri_uv; /* #F by 3, or NULL */
+    /* What the file says beyond the geometry (io/ fills them; NULL / 0 when
+     * it says nothing). They mark the default seams (mesh/hard_edges.h). */
+    int nn;
+    double *normal;     /* #N by 3: the file's normals */
+    int *tri_normal;    /* #F by 3 into normal: each corner's normal */
+    int *face_material; /* #F: the material of each face, numbered from 0 in order of first use */
 };
 typedef struct neuv_mesh neuv_mesh;
 
@@ -23,6 +29,15 @@ typedef struct neuv_mesh neuv_mesh;
  * (tri_uv is allocated when nuv > 0). NULL on allocation failure. */
 neuv_mesh *mesh_create(int nv, int nf, int nuv);
 neuv_mesh *mesh_clone(const neuv_mesh *m);
+/* Replaces the normals of m (takes a copy); nn == 0 removes them. */
+neuv_status mesh_set_normals(neuv_mesh *m, int nn, const double *normal, const int *tri_normal);
+/* Replaces the face materials of m (takes a copy); NULL removes them. */
+neuv_status mesh_set_face_material(neuv_mesh *m, const int *face_material);
+/* The normals and face materials of `joined`, whose faces are those of a
+ * (may be NULL) then those of b: normals when both have them (b's indices
+ * shifted), materials when either has them (b's numbered after a's; a mesh
+ * without materials counts as one). NEUV_ERR_NOMEM on allocation failure. */
+neuv_status mesh_join_marks(neuv_mesh *joined, const neuv_mesh *a, const neuv_mesh *b);
 /* Replaces the UVs of m (takes a copy); nuv == 0 removes them. */
 neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_uv);
 void mesh_free(neuv_mesh *m);

@@ -43,6 +43,7 @@ void neuv_unwrap_options_init(neuv_unwrap_options *o)
     o->resolution = 1024;
     o->padding = 2;
     o->use_cache = 1;
+    o->hard_edges = 1;
     uv_refine_options ro;
     uv_refine_default_options(&ro);
     o->refine = ro.iters;

@@ -8,6 +8,7 @@
 #include "neuv/neuv.h"
 #include "atlas/pack.h"
 #include "mesh/clean.h"
+#include "mesh/hard_edges.h"
 #include "mesh/mesh.h"
 #include "metrics/uv_metrics.h"
 #include "models/param_net.h"
@@ -68,6 +69,8 @@ struct neuv_unwrap_result {
     int seam_edges;           /* required seam edges of the cleaned mesh */
     int seam_edges_angle;     /* of which above opts.seam_angle */
     int seam_unmatched;       /* pairs of opts.seam_edges that are no edge of the mesh */
+    hard_edge_report hard;    /* the file's hard and material edges (opts.hard_edges) */
+    int hard_edges_not_kept;  /* of which left out: a model made the charts */
     int seam_crossed;         /* seam edges the final atlas joins (same UVs on both sides) */
     int *seam_pair;           /* seam_edges by 2: their vertices in the cleaned mesh */
     int *seam_origin;         /* while cut: the cleaned mesh's vertex each vertex copies; else NULL */

@@ -266,6 +266,11 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "above_angle"); json_int(&w, r->seam_edges_angle);
     json_key(&w, "user_pairs"); json_int(&w, r->opts.seam_edge_count);
     json_key(&w, "user_pairs_unmatched"); json_int(&w, r->seam_unmatched);
+    json_key(&w, "hard_edges"); json_bool(&w, r->opts.hard_edges);
+    json_key(&w, "from_normals"); json_int(&w, r->hard.from_normals);
+    json_key(&w, "from_materials"); json_int(&w, r->hard.from_materials);
+    json_key(&w, "flat_shaded"); json_bool(&w, r->hard.flat_shaded);
+    json_key(&w, "hard_edges_not_kept"); json_int(&w, r->hard_edges_not_kept);
     json_key(&w, "crossed"); json_int(&w, r->seam_crossed);
     json_end_object(&w);
 

@@ -38,26 +38,46 @@ neuv_status unwrap_seams_cut(struct neuv_unwrap_result *r, const neuv_mesh *in, 
     if (!(o->seam_angle >= 0 && o->seam_angle < 180))
         return error_set(NEUV_ERR_INPUT, "seam angle (--seam-angle) %g: expected degrees in 0..180", o->seam_angle);
     if (o->seam_edge_count < 0) return error_set(NEUV_ERR_INPUT, "seam_edge_count %d is negative", o->seam_edge_count);
-    if (o->seam_angle == 0 && o->seam_edge_count == 0) return NEUV_OK;
-    if (keep_model)
-        return error_set(NEUV_ERR_INPUT, "required seams (--seam-angle) cannot be used with a model to save "
-                                         "(--save-model): a model does not record them yet");
-    if (apply)
-        return error_set(NEUV_ERR_INPUT, "required seams (--seam-angle) cannot be used with --model: the charts "
-                                         "come from the model, which does not record seams yet");
+    double *hard = NULL;
+    int n_hard = 0;
+    if (o->hard_edges) {
+        neuv_status s = mesh_hard_edges(in, &hard, &n_hard, &r->hard);
+        if (s != NEUV_OK) return s;
+    }
+    int asked = o->seam_angle > 0 || o->seam_edge_count > 0;
+    if (!asked && n_hard == 0) return NEUV_OK;
+    if (keep_model) {
+        mem_free(hard);
+        if (asked)
+            return error_set(NEUV_ERR_INPUT, "required seams (--seam-angle) cannot be used with a model to save "
+                                             "(--save-model): a model does not record them yet");
+        return error_set(NEUV_ERR_INPUT, "the mesh's normals or materials mark %d hard edges, which a saved model "
+                                         "does not record yet: --no-hard-edges saves a model without them", n_hard);
+    }
+    if (apply) {
+        mem_free(hard);
+        if (asked)
+            return error_set(NEUV_ERR_INPUT, "required seams (--seam-angle) cannot be used with --model: the charts "
+                                             "come from the model, which does not record seams yet");
+        r->hard_edges_not_kept = n_hard;
+        return NEUV_OK;
+    }
     double *points = NULL;
     neuv_status s = user_seam_points(o, in, &points);
     r->opts.seam_edges = NULL; /* the caller's array: read here only */
-    if (s != NEUV_OK) return s;
+    if (s != NEUV_OK) { mem_free(hard); return s; }
     neuv_mesh *m = r->mesh;
     edge_faces ef;
-    if (edge_faces_build(&ef, m) != 0) { mem_free(points); return error_nomem("the seams"); }
+    if (edge_faces_build(&ef, m) != 0) { mem_free(points); mem_free(hard); return error_nomem("the seams"); }
     unsigned char *seam = mem_calloc((size_t)ef.ne + 1, 1);
-    if (!seam) { edge_faces_free(&ef); mem_free(points); return error_nomem("the seams"); }
+    if (!seam) { edge_faces_free(&ef); mem_free(points); mem_free(hard); return error_nomem("the seams"); }
     if (o->seam_angle > 0) r->seam_edges_angle = seam_mark_angle(m, &ef, o->seam_angle, seam);
     int user = seam_mark_positions(m, &ef, points, o->seam_edge_count, seam, &r->seam_unmatched);
+    int unmatched_hard = 0;
+    int from_file = user < 0 ? 0 : seam_mark_positions(m, &ef, hard, n_hard, seam, &unmatched_hard);
     mem_free(points);
-    if (user < 0) s = error_nomem("the seams");
+    mem_free(hard);
+    if (user < 0 || from_file < 0) s = error_nomem("the seams");
     int n = 0;
     for (int e = 0; e < ef.ne; e++) n += seam[e];
     r->seam_edges = n;

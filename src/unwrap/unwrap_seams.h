@@ -7,10 +7,14 @@
 #include "unwrap/unwrap_internal.h"
 
 /* Cuts r->mesh (cleaned, not yet rescaled) along the edges above
- * r->opts.seam_angle and the pairs r->opts.seam_edges (vertex indices of
- * `in`, the mesh before cleaning). Nothing to do without either. Refused
- * (NEUV_ERR_INPUT) with a saved model, made (keep_model) or applied (apply):
- * a model does not record seams yet. */
+ * r->opts.seam_angle, the pairs r->opts.seam_edges (vertex indices of `in`,
+ * the mesh before cleaning) and, with r->opts.hard_edges, the hard and
+ * material edges of `in` (mesh/hard_edges.h). Nothing to do without any.
+ * With a saved model, made (keep_model) or applied (apply), seams asked for
+ * are refused (NEUV_ERR_INPUT: a model does not record seams yet); the
+ * file's own hard edges are refused with keep_model (the atlas would differ
+ * from the one without it) and, applied, left out and counted in
+ * r->hard_edges_not_kept. */
 neuv_status unwrap_seams_cut(struct neuv_unwrap_result *r, const neuv_mesh *in, int keep_model, int apply);
 
 /* Joins the copies again (r->mesh gets the cleaned mesh's vertices back; the
