@@ -277,6 +277,7 @@ int main(void)
         one.d.fold_weight = 0;
         one.d.fold_eps = 0;
         free(target); free(h2); free(hid); free(uvf); free(head0);
+        param_mlp_free(&f2);
     }
 
     /* Heads that also read the Fourier features of x: x itself among them,
