@@ -45,3 +45,14 @@ int edge_faces_build(edge_faces *t, const neuv_mesh *m)
         if (t->face_edge[c] >= 0) t->side[t->start[t->face_edge[c] + 1]++] = (int)c;
     return 0;
 }
+
+int edge_faces_index(const edge_faces *t, edge_map *map)
+{
+    if (edge_map_init(map, (size_t)t->ne) != 0) return -1;
+    for (int e = 0; e < t->ne; e++)
+        if (!edge_map_slot(map, t->edge_v[2 * e], t->edge_v[2 * e + 1], e, NULL)) {
+            edge_map_free(map);
+            return -1;
+        }
+    return 0;
+}

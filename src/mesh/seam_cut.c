@@ -71,11 +71,7 @@ int seam_mark_positions(const neuv_mesh *m, const edge_faces *ef, const double *
     if (n <= 0) return 0;
     placed_vertex *sorted = mem_alloc(sizeof *sorted * (size_t)m->nv);
     edge_map map;
-    if (!sorted || edge_map_init(&map, (size_t)ef->ne) != 0) { mem_free(sorted); return -1; }
-    for (int e = 0; e < ef->ne; e++) {
-        int *slot = edge_map_slot(&map, ef->edge_v[2 * e], ef->edge_v[2 * e + 1], e, NULL);
-        if (!slot) { edge_map_free(&map); mem_free(sorted); return -1; }
-    }
+    if (!sorted || edge_faces_index(ef, &map) != 0) { mem_free(sorted); return -1; }
     for (int v = 0; v < m->nv; v++) {
         memcpy(sorted[v].p, m->pos + 3 * (size_t)v, sizeof sorted[v].p);
         sorted[v].v = v;

@@ -119,12 +119,7 @@ neuv_status unwrap_seams_join(struct neuv_unwrap_result *r)
     edge_faces ef;
     edge_map map;
     if (edge_faces_build(&ef, m) != 0) return error_nomem("the seams");
-    if (edge_map_init(&map, (size_t)ef.ne) != 0) { edge_faces_free(&ef); return error_nomem("the seams"); }
-    for (int e = 0; e < ef.ne; e++)
-        if (!edge_map_slot(&map, ef.edge_v[2 * e], ef.edge_v[2 * e + 1], e, NULL)) {
-            edge_map_free(&map); edge_faces_free(&ef);
-            return error_nomem("the seams");
-        }
+    if (edge_faces_index(&ef, &map) != 0) { edge_faces_free(&ef); return error_nomem("the seams"); }
     for (int i = 0; i < r->seam_edges; i++) {
         int e = edge_map_get(&map, r->seam_pair[2 * i], r->seam_pair[2 * i + 1]);
         if (e < 0 || edge_faces_count(&ef, e) != 2) continue;
