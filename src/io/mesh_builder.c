@@ -9,6 +9,7 @@
 #include "core/log.h"
 #include "core/mem.h"
 #include "io/polygon_triangulate.h"
+#include "mesh/mesh_attributes.h"
 
 /* nv and nf are ints everywhere in neuv, and index arithmetic uses 3*nf. */
 #define MAX_ITEMS ((size_t)INT_MAX / 4)
@@ -17,12 +18,21 @@ void mesh_builder_init(mesh_builder *b)
 {
     memset(b, 0, sizeof *b);
     b->material = -1;
+    b->group = -1;
+}
+
+struct mesh_attributes *mesh_builder_attributes(mesh_builder *b)
+{
+    if (!b->attr) b->attr = mesh_attributes_new();
+    return b->attr;
 }
 
 void mesh_builder_free(mesh_builder *b)
 {
     mem_free(b->pos); mem_free(b->uv); mem_free(b->tri); mem_free(b->tri_uv); mem_free(b->origin);
     mem_free(b->normal); mem_free(b->tri_normal); mem_free(b->face_material);
+    mem_free(b->face_polygon); mem_free(b->face_group); mem_free(b->poly_start); mem_free(b->poly_corner);
+    mesh_attributes_free(b->attr);
     mem_free(b->scratch_pos); mem_free(b->scratch_xy); mem_free(b->scratch_idx); mem_free(b->scratch_tri);
     mesh_builder_init(b);
 }
@@ -55,12 +65,14 @@ static neuv_status grow_faces(mesh_builder *b, size_t need)
 {
     if (need > MAX_ITEMS) return error_set(NEUV_ERR_INPUT, "more than %zu triangles; too large for neuv", MAX_ITEMS);
     if (need <= b->cap_f) return NEUV_OK;
-    size_t c1 = b->cap_f, c2 = b->cap_f, c3 = b->cap_f, c4 = b->cap_f, c5 = b->cap_f;
+    size_t c1 = b->cap_f, c2 = b->cap_f, c3 = b->cap_f, c4 = b->cap_f, c5 = b->cap_f, c6 = b->cap_f, c7 = b->cap_f;
     if (!grow((void **)&b->tri, &c1, need, 3 * sizeof(int)) ||
         !grow((void **)&b->tri_uv, &c2, need, 3 * sizeof(int)) ||
         !grow((void **)&b->origin, &c3, need, sizeof(int)) ||
         !grow((void **)&b->tri_normal, &c4, need, 3 * sizeof(int)) ||
-        !grow((void **)&b->face_material, &c5, need, sizeof(int)))
+        !grow((void **)&b->face_material, &c5, need, sizeof(int)) ||
+        !grow((void **)&b->face_polygon, &c6, need, sizeof(int)) ||
+        !grow((void **)&b->face_group, &c7, need, sizeof(int)))
         return error_nomem("faces");
     b->cap_f = c1;
     return NEUV_OK;
@@ -107,9 +119,16 @@ neuv_status mesh_builder_add_normal(mesh_builder *b, double x, double y, double 
     return NEUV_OK;
 }
 
-/* A triangle of polygon corners i, j, k. */
-static void put_triangle(mesh_builder *b, const int *v, const int *uv, const int *vn, int i, int j, int k, int origin)
+/* A triangle of polygon corners i, j, k; corner_of[c] is set to the
+ * triangle corner of polygon corner c when it has none yet. */
+static void put_triangle(mesh_builder *b, const int *v, const int *uv, const int *vn, int i, int j, int k, int origin,
+                         int *corner_of)
 {
+    int ijk[3] = {i, j, k};
+    for (int q = 0; q < 3; q++)
+        if (corner_of[ijk[q]] < 0) corner_of[ijk[q]] = 3 * b->nf + q;
+    b->face_polygon[b->nf] = b->np;
+    b->face_group[b->nf] = b->group;
     int *t = b->tri + 3 * (size_t)b->nf, *tu = b->tri_uv + 3 * (size_t)b->nf, *tn = b->tri_normal + 3 * (size_t)b->nf;
     t[0] = v[i]; t[1] = v[j]; t[2] = v[k];
     if (uv) { tu[0] = uv[i]; tu[1] = uv[j]; tu[2] = uv[k]; }
@@ -119,6 +138,9 @@ static void put_triangle(mesh_builder *b, const int *v, const int *uv, const int
     b->face_material[b->nf] = b->material;
     b->origin[b->nf++] = origin;
 }
+
+static neuv_status triangulate(mesh_builder *b, int n, const int *v, const int *uv, const int *vn, int origin,
+                               int *corner_of);
 
 neuv_status mesh_builder_add_polygon(mesh_builder *b, int n, const int *v, const int *uv, int origin)
 {
@@ -134,10 +156,26 @@ neuv_status mesh_builder_add_polygon_normals(mesh_builder *b, int n, const int *
     else b->faces_without_uv++;
     if (vn) b->faces_with_normal++;
     else b->faces_without_normal++;
+    if (!grow((void **)&b->poly_start, &b->cap_p, (size_t)b->np + 2, sizeof(int))) return error_nomem("polygons");
+    if (b->np == 0) b->poly_start[0] = 0;
+    if (!grow((void **)&b->poly_corner, &b->cap_pc, (size_t)b->poly_start[b->np] + (size_t)n, sizeof(int)))
+        return error_nomem("polygons");
+    int *corner_of = b->poly_corner + b->poly_start[b->np];
+    for (int i = 0; i < n; i++) corner_of[i] = -1;
+    if (n > 3) b->any_polygon = 1;
     if (n == 3) {
-        put_triangle(b, v, uv, vn, 0, 1, 2, origin);
-        return NEUV_OK;
+        put_triangle(b, v, uv, vn, 0, 1, 2, origin, corner_of);
+    } else {
+        if ((s = triangulate(b, n, v, uv, vn, origin, corner_of)) != NEUV_OK) return s;
     }
+    b->poly_start[b->np + 1] = b->poly_start[b->np] + n;
+    b->np++;
+    return NEUV_OK;
+}
+
+static neuv_status triangulate(mesh_builder *b, int n, const int *v, const int *uv, const int *vn, int origin,
+                               int *corner_of)
+{
     if ((size_t)n > b->cap_scratch) {
         size_t c = (size_t)n * 2;
         double *sp = mem_realloc(b->scratch_pos, c * 3 * sizeof(double));
@@ -162,7 +200,7 @@ neuv_status mesh_builder_add_polygon_normals(mesh_builder *b, int n, const int *
     polygon_triangulate(n, b->scratch_pos, b->scratch_tri, b->scratch_xy, b->scratch_idx);
     for (int t = 0; t < n - 2; t++) {
         const int *c = b->scratch_tri + 3 * t;
-        put_triangle(b, v, uv, vn, c[0], c[1], c[2], origin);
+        put_triangle(b, v, uv, vn, c[0], c[1], c[2], origin, corner_of);
     }
     return NEUV_OK;
 }
@@ -263,7 +301,30 @@ neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style st, neuv_mes
         if (first_unnamed)
             for (int f = 0; f < b->nf; f++) b->face_material[f]++;
         m->face_material = b->face_material; b->face_material = NULL;
+        mesh_attributes *a = b->attr;
+        if (first_unnamed && a && a->n_materials > 0) { /* the unnamed material comes first */
+            char **names = mem_realloc(a->material_name, sizeof(char *) * ((size_t)a->n_materials + 1));
+            if (!names) { mesh_free(m); s = error_nomem("material names"); goto done; }
+            memmove(names + 1, names, sizeof(char *) * (size_t)a->n_materials);
+            names[0] = NULL;
+            a->material_name = names;
+            a->n_materials++;
+        }
     }
+    int any_group = 0;
+    for (int f = 0; f < b->nf && !any_group; f++) any_group = b->face_group[f] >= 0;
+    if (any_group && b->attr) {
+        b->attr->face_group = b->face_group;
+        b->face_group = NULL;
+    }
+    if (b->any_polygon || (b->attr && b->attr->ply_face.count > 0)) {
+        m->np = b->np;
+        m->poly_start = b->poly_start; b->poly_start = NULL;
+        m->poly_corner = b->poly_corner; b->poly_corner = NULL;
+        m->face_polygon = b->face_polygon; b->face_polygon = NULL;
+    }
+    m->attr = b->attr;
+    b->attr = NULL;
     *out = m;
 done:
     mesh_builder_free(b);

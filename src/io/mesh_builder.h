@@ -24,6 +24,16 @@ typedef struct mesh_builder {
     int *face_material;    /* #F: `material` when the face was added */
     int material;          /* the material of the faces added next (-1: none named yet) */
     int *origin;           /* #F: file face number (or line) each triangle came from */
+    int *face_polygon;     /* #F: the polygon each triangle came from */
+    int *face_group;       /* #F: `group` when the face was added */
+    int group;             /* the group state of the faces added next (-1: none; OBJ o/g/s) */
+    int np;                /* polygons added */
+    int *poly_start;       /* np + 1 */
+    size_t cap_p;
+    int *poly_corner;      /* poly_start[np]: a triangle corner (3 f + k) for each polygon corner */
+    size_t cap_pc;
+    int any_polygon;       /* a polygon of more than 3 corners was added */
+    struct mesh_attributes *attr; /* what the reader keeps beyond the surface (finish hands it to the mesh) */
     int nf;
     size_t cap_f;
     int faces_with_uv;     /* polygons given with UVs */
@@ -63,7 +73,11 @@ neuv_status mesh_builder_add_polygon_normals(mesh_builder *b, int n, const int *
  * warning is logged when only some do), normals likewise (dropped with a
  * warning when an index is out of range or a normal not finite), face
  * materials when any face has one (faces before the first get material 0
- * with the others renumbered after it). The builder is emptied either way. */
+ * with the others renumbered after it; the attributes' material names
+ * follow), polygons when one has more than 3 corners or the attributes
+ * have per-polygon values, group states when any face has one. The builder is emptied either way. */
+/* The builder's attributes, made on first use; NULL when memory runs out. */
+struct mesh_attributes *mesh_builder_attributes(mesh_builder *b);
 neuv_status mesh_builder_finish(mesh_builder *b, mesh_builder_style style, neuv_mesh **out);
 
 #endif

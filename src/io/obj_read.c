@@ -14,6 +14,7 @@
 #include "io/mesh_builder.h"
 #include "io/mesh_io.h"
 #include "io/text_scan.h"
+#include "mesh/mesh_attributes.h"
 
 /* The statement keyword `kw` at p, followed by a blank or the line end. */
 static int statement(const char *p, const char *kw)
@@ -95,6 +96,73 @@ static int name_index(name_list *l, const char *p)
     copy[len] = '\0';
     l->name[l->n] = copy;
     return l->n++;
+}
+
+/* The argument of a statement at p: up to the line end or a comment,
+ * trailing blanks cut; NULL when memory runs out. */
+static char *statement_argument(const char *p)
+{
+    size_t len = 0;
+    while (p[len] && p[len] != '\n' && p[len] != '#') len++;
+    while (len > 0 && (p[len - 1] == ' ' || p[len - 1] == '\t' || p[len - 1] == '\r')) len--;
+    return attr_strndup(p, len);
+}
+
+static int same_text(const char *a, const char *b) { return a == b || (a && b && !strcmp(a, b)); }
+
+/* The OBJ grouping statements in force: `o`, `g` and `s` set one part of
+ * the state; faces remember the state's index in the attributes. */
+static neuv_status set_group_part(mesh_builder *b, int part, const char *p)
+{
+    mesh_attributes *a = mesh_builder_attributes(b);
+    char *arg = statement_argument(p);
+    if (!a || !arg) { mem_free(arg); return error_nomem("group names"); }
+    obj_group_state now = {NULL, NULL, NULL};
+    if (b->group >= 0) now = a->groups[b->group];
+    char **slot = part == 0 ? &now.object : part == 1 ? &now.group : &now.smooth;
+    *slot = arg;
+    for (int i = 0; i < a->n_groups; i++)
+        if (same_text(a->groups[i].object, now.object) && same_text(a->groups[i].group, now.group) &&
+            same_text(a->groups[i].smooth, now.smooth)) {
+            b->group = i;
+            mem_free(arg);
+            return NEUV_OK;
+        }
+    obj_group_state *g = mem_realloc(a->groups, sizeof *g * ((size_t)a->n_groups + 1));
+    if (!g) { mem_free(arg); return error_nomem("group names"); }
+    a->groups = g;
+    obj_group_state *n = &g[a->n_groups];
+    memset(n, 0, sizeof *n);
+    n->object = now.object && now.object != arg ? attr_strndup(now.object, strlen(now.object)) : now.object;
+    n->group = now.group && now.group != arg ? attr_strndup(now.group, strlen(now.group)) : now.group;
+    n->smooth = now.smooth && now.smooth != arg ? attr_strndup(now.smooth, strlen(now.smooth)) : now.smooth;
+    a->n_groups++;
+    if ((now.object && !n->object) || (now.group && !n->group) || (now.smooth && !n->smooth))
+        return error_nomem("group names");
+    b->group = a->n_groups - 1;
+    return NEUV_OK;
+}
+
+/* Vertex colours (`v x y z r g b`), grown with the vertices; a file that
+ * gives them on only some vertices has none. */
+typedef struct obj_colors {
+    float *rgb;
+    size_t cap;
+    int with, without;
+} obj_colors;
+
+static neuv_status add_color(obj_colors *oc, int vertex, const double *rgb)
+{
+    if ((size_t)vertex >= oc->cap) {
+        size_t c = oc->cap ? 2 * oc->cap : 1024;
+        while (c <= (size_t)vertex) c *= 2;
+        float *q = mem_realloc(oc->rgb, sizeof(float) * 3 * c);
+        if (!q) return error_nomem("vertex colours");
+        oc->rgb = q;
+        oc->cap = c;
+    }
+    for (int k = 0; k < 3; k++) oc->rgb[3 * (size_t)vertex + k] = (float)rgb[k];
+    return NEUV_OK;
 }
 
 /* Turns a 1-based or negative (relative) OBJ index into a 0-based one. */
@@ -193,6 +261,7 @@ neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
     mesh_builder_init(&b);
     corner_buf cb = {0};
     name_list materials = {0};
+    obj_colors colors = {0};
     text_cursor c = {text, 1};
     neuv_status s = NEUV_OK;
     while (*c.p && s == NEUV_OK) {
@@ -202,11 +271,20 @@ neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
             c.p += 1;
             double x[3];
             if ((s = read_triple(&c, "v", x)) != NEUV_OK) break;
-            /* A 4th value (w) or vertex colours may follow; they are ignored. */
             if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]))
                 s = error_set(NEUV_ERR_INPUT, "line %d: vertex %d has a non-finite coordinate", c.line, b.nv + 1);
             else
                 s = mesh_builder_add_vertex(&b, x[0], x[1], x[2]);
+            /* A 4th value is w; three more after x y z are a colour. */
+            double extra[4];
+            int ne = 0;
+            while (s == NEUV_OK && ne < 4 && text_read_double(&c, &extra[ne]) > 0) ne++;
+            if (s == NEUV_OK && ne == 3 && isfinite(extra[0]) && isfinite(extra[1]) && isfinite(extra[2])) {
+                colors.with++;
+                s = add_color(&colors, b.nv - 1, extra);
+            } else {
+                colors.without++;
+            }
         } else if (statement(p, "vt")) {
             c.p += 2;
             double t[2] = {0, 0};
@@ -227,14 +305,47 @@ neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out)
         } else if (statement(p, "f")) {
             c.p += 1;
             s = parse_face(&c, &b, &cb);
+        } else if (statement(p, "o") || statement(p, "g") || statement(p, "s")) {
+            int part = p[0] == 'o' ? 0 : p[0] == 'g' ? 1 : 2;
+            c.p += 1;
+            text_skip_blanks(&c);
+            s = set_group_part(&b, part, c.p);
+        } else if (statement(p, "mtllib")) {
+            c.p += 6;
+            text_skip_blanks(&c);
+            mesh_attributes *a = mesh_builder_attributes(&b);
+            char *lib = a ? statement_argument(c.p) : NULL;
+            if (!lib) s = error_nomem("the material library");
+            else if (!a->material_library) a->material_library = lib;
+            else mem_free(lib); /* the first library is kept */
         }
-        /* Everything else (vp, o, g, s, mtllib, l, p, comments) does not
-         * change the surface or its seams. */
+        /* Everything else (vp, l, p, comments) does not change the surface
+         * or what is written back. */
         text_next_line(&c);
     }
     mem_free(cb.v);
     mem_free(cb.uv);
     mem_free(cb.vn);
+    if (s == NEUV_OK && materials.n > 0) { /* the names go with the mesh */
+        mesh_attributes *a = mesh_builder_attributes(&b);
+        if (!a) s = error_nomem("material names");
+        else {
+            a->material_name = materials.name;
+            a->n_materials = materials.n;
+            materials.name = NULL;
+            materials.n = 0;
+        }
+    }
+    if (s == NEUV_OK && colors.with > 0 && colors.without == 0) {
+        mesh_attributes *a = mesh_builder_attributes(&b);
+        if (!a) s = error_nomem("vertex colours");
+        else {
+            a->color = colors.rgb;
+            a->color_channels = 3;
+            colors.rgb = NULL;
+        }
+    }
+    mem_free(colors.rgb);
     name_list_free(&materials);
     if (s != NEUV_OK) { mesh_builder_free(&b); return s; }
     mesh_builder_style style = {1, 1};

@@ -1,4 +1,5 @@
 #include "mesh/clean.h"
+#include "mesh/mesh_attributes.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -71,7 +72,19 @@ static int weld(neuv_mesh *m, int *rep)
     return removed;
 }
 
-int mesh_weld_positions(neuv_mesh *m) { return weld(m, NULL); }
+int mesh_weld_positions(neuv_mesh *m)
+{
+    int n = weld(m, NULL);
+    /* Faces are kept, so polygons and face values stay; per-vertex values
+     * of merged vertices cannot, so none is kept. */
+    if (n > 0 && m->attr) {
+        mem_free(m->attr->color);
+        m->attr->color = NULL;
+        m->attr->color_channels = 0;
+        ply_extra_free(&m->attr->ply_vertex);
+    }
+    return n;
+}
 
 /* Keeps the faces with keep[f] != 0, in order, with their UV corners. */
 static void keep_faces(neuv_mesh *m, const unsigned char *keep)
@@ -407,7 +420,7 @@ neuv_status mesh_clean(neuv_mesh *m, const mesh_clean_options *opts, mesh_clean_
     if (st != NEUV_OK) return st;
 
     /* Work on a copy so that m is untouched when we refuse or run out of memory.
-     * The file's normals and materials are not carried through the repairs:
+     * The file's normals, materials, polygons and attributes are not carried through the repairs:
      * a cleaned mesh has none (the seams they mark are found on the input,
      * unwrap/unwrap_seams.c). */
     neuv_mesh *w = mesh_clone(m);
@@ -447,5 +460,6 @@ neuv_status mesh_clean(neuv_mesh *m, const mesh_clean_options *opts, mesh_clean_
     mesh_free(w);
     mesh_set_normals(m, 0, NULL, NULL);
     mesh_set_face_material(m, NULL);
+    mesh_drop_file_structure(m);
     return NEUV_OK;
 }

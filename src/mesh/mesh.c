@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/mem.h"
+#include "mesh/mesh_attributes.h"
 
 neuv_mesh *mesh_create(int nv, int nf, int nuv)
 {
@@ -71,6 +72,39 @@ neuv_status mesh_set_face_material(neuv_mesh *m, const int *face_material)
     return NEUV_OK;
 }
 
+void mesh_drop_file_structure(neuv_mesh *m)
+{
+    mem_free(m->face_polygon); mem_free(m->poly_start); mem_free(m->poly_corner);
+    m->face_polygon = m->poly_start = m->poly_corner = NULL;
+    m->np = 0;
+    mesh_attributes_free(m->attr);
+    m->attr = NULL;
+}
+
+neuv_status mesh_copy_file_structure(neuv_mesh *m, const neuv_mesh *src)
+{
+    mesh_drop_file_structure(m);
+    if (src->np > 0) {
+        size_t nc = (size_t)src->poly_start[src->np];
+        m->face_polygon = mem_alloc(sizeof(int) * (size_t)(src->nf > 0 ? src->nf : 1));
+        m->poly_start = mem_alloc(sizeof(int) * ((size_t)src->np + 1));
+        m->poly_corner = mem_alloc(sizeof(int) * (nc > 0 ? nc : 1));
+        if (!m->face_polygon || !m->poly_start || !m->poly_corner) {
+            mesh_drop_file_structure(m);
+            return error_nomem("polygons");
+        }
+        memcpy(m->face_polygon, src->face_polygon, sizeof(int) * (size_t)src->nf);
+        memcpy(m->poly_start, src->poly_start, sizeof(int) * ((size_t)src->np + 1));
+        memcpy(m->poly_corner, src->poly_corner, sizeof(int) * nc);
+        m->np = src->np;
+    }
+    if (src->attr && !(m->attr = mesh_attributes_clone(src->attr, src->nv, src->nf))) {
+        mesh_drop_file_structure(m);
+        return error_nomem("the file's attributes");
+    }
+    return NEUV_OK;
+}
+
 neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_uv)
 {
     mem_free(m->uv); mem_free(m->tri_uv);
@@ -128,6 +162,7 @@ void mesh_free(neuv_mesh *m)
     if (!m) return;
     mem_free(m->pos); mem_free(m->tri); mem_free(m->uv); mem_free(m->tri_uv);
     mem_free(m->normal); mem_free(m->tri_normal); mem_free(m->face_material);
+    mesh_drop_file_structure(m);
     mem_free(m);
 }
 

@@ -22,12 +22,21 @@ struct neuv_mesh {
     double *normal;     /* #N by 3: the file's normals */
     int *tri_normal;    /* #F by 3 into normal: each corner's normal */
     int *face_material; /* #F: the material of each face, numbered from 0 in order of first use */
+    /* The file's polygons (np == 0: it gave triangles, or they are not
+     * known). A polygon's triangles are consecutive faces. */
+    int np;
+    int *face_polygon;  /* #F: the polygon each face is a triangle of */
+    int *poly_start;    /* np + 1: first corner of each polygon in poly_corner */
+    int *poly_corner;   /* poly_start[np]: the face corner (3 f + k) standing for each polygon corner, in the file's order */
+    struct mesh_attributes *attr; /* what else the file carries (mesh/mesh_attributes.h), or NULL */
 };
 typedef struct neuv_mesh neuv_mesh;
 
 /* Allocates a zeroed mesh with room for nv vertices, nf faces and nuv UVs
  * (tri_uv is allocated when nuv > 0). NULL on allocation failure. */
 neuv_mesh *mesh_create(int nv, int nf, int nuv);
+/* A copy of the geometry, UVs, normals and face materials; polygons and
+ * attributes are copied only by mesh_copy_file_structure. */
 neuv_mesh *mesh_clone(const neuv_mesh *m);
 /* Replaces the normals of m (takes a copy); nn == 0 removes them. */
 neuv_status mesh_set_normals(neuv_mesh *m, int nn, const double *normal, const int *tri_normal);
@@ -38,6 +47,11 @@ neuv_status mesh_set_face_material(neuv_mesh *m, const int *face_material);
  * shifted), materials when either has them (b's numbered after a's; a mesh
  * without materials counts as one). NEUV_ERR_NOMEM on allocation failure. */
 neuv_status mesh_join_marks(neuv_mesh *joined, const neuv_mesh *a, const neuv_mesh *b);
+/* Copies the polygons and attributes of src into m, which has src's faces
+ * (m's own are replaced). NEUV_ERR_NOMEM on allocation failure. */
+neuv_status mesh_copy_file_structure(neuv_mesh *m, const neuv_mesh *src);
+/* Removes m's polygons and attributes (after a change of its faces). */
+void mesh_drop_file_structure(neuv_mesh *m);
 /* Replaces the UVs of m (takes a copy); nuv == 0 removes them. */
 neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_uv);
 void mesh_free(neuv_mesh *m);
