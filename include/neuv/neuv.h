@@ -402,6 +402,23 @@ NEUV_API neuv_status neuv_atlas_get_output(neuv_atlas *atlas, int index, neuv_at
 /* The whole cleaned mesh with its packed per-corner UVs (owned by the
  * atlas), e.g. for neuv_mesh_save; NULL before stage 3. */
 NEUV_API const neuv_mesh *neuv_atlas_mesh(const neuv_atlas *atlas);
+/* The mesh `input`, added as mesh `index`, with the packed atlas as its UVs:
+ * what `neuv unwrap` writes. Everything else is input's: its vertices and
+ * faces in their order, its polygons, normals, materials, groups, colours
+ * and other properties as its file gave them, so writers split vertices
+ * only where a UV seam runs. The atlas itself is made on a cleaned copy
+ * (neuv_atlas_mesh): a face the cleaning dropped (degenerate, duplicate)
+ * gets one UV at all three corners (a zero-area UV triangle: no texture,
+ * no flip, no overlap), that of one of its vertices elsewhere, or (0, 0);
+ * a face the cleaning turned over (report cleaning.flipped_faces) is
+ * written turned over, or its UVs would be mirrored against its chart.
+ * uv_channel 0: the atlas replaces input's UVs; 1: input's UVs stay the
+ * first set and the atlas is the second (glTF TEXCOORD_1, PLY's second
+ * pair; OBJ holds one set, so neuv_mesh_save refuses such a mesh as .obj).
+ * NEUV_ERR_INPUT before stage 3, for a mesh other than the one added, for
+ * uv_channel 1 on a mesh without UVs. The caller frees *out. */
+NEUV_API neuv_status neuv_atlas_output_mesh(neuv_atlas *atlas, int index, const neuv_mesh *input, int uv_channel,
+                                            neuv_mesh **out);
 /* The metrics of the packed atlas, as neuv_evaluate reads the saved mesh. */
 NEUV_API neuv_status neuv_atlas_get_metrics(const neuv_atlas *atlas, neuv_metrics *out);
 
@@ -451,6 +468,8 @@ typedef struct neuv_report {
     int seam_edges;                  /* required seam edges (hard edges, materials, seam_angle, seam_edges) */
     int seams_crossed;               /* of which joined by the atlas (0 when all were kept) */
     int hard_edges_not_kept;         /* hard and material edges of the file left out: a model's charts */
+    int polygons;                    /* the file's polygons of more than 3 corners */
+    int polygons_split;              /* of which split between charts (written back as their triangles) */
 } neuv_report;
 NEUV_API neuv_status neuv_atlas_get_report(const neuv_atlas *atlas, neuv_report *out);
 /* The JSON report (docs/report.md); release with neuv_free. input_name,

@@ -372,6 +372,26 @@ static neuv_status find_origins(neuv_atlas *a)
     return NEUV_OK;
 }
 
+neuv_status api_atlas_origins(neuv_atlas *a, int index, api_atlas_origin *out)
+{
+    neuv_status s = need_result(a);
+    if (s != NEUV_OK) return s;
+    if (index < 0 || index >= a->n_meshes)
+        return error_set(NEUV_ERR_INPUT, "mesh %d: the atlas has %d mesh%s", index, a->n_meshes,
+                         a->n_meshes == 1 ? "" : "es");
+    if ((s = find_origins(a)) != NEUV_OK) return s;
+    out->packed = a->result->mesh;
+    out->face_chart = a->result->face_chart;
+    out->face_origin = a->face_origin;
+    out->corner_origin = a->corner_origin;
+    out->input = a->input;
+    out->v0 = a->vertex_start[index];
+    out->v1 = a->vertex_start[index + 1];
+    out->f0 = a->face_start[index];
+    out->f1 = a->face_start[index + 1];
+    return NEUV_OK;
+}
+
 static int compare_u64(const void *x, const void *y)
 {
     uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
@@ -520,6 +540,8 @@ neuv_status neuv_atlas_get_report(const neuv_atlas *a, neuv_report *out)
     out->seam_edges = r->seam_edges;
     out->seams_crossed = r->seam_crossed;
     out->hard_edges_not_kept = r->hard_edges_not_kept;
+    out->polygons = r->polygons;
+    out->polygons_split = r->polygons_split;
     if (a->stage == 3) memcpy(&out->metrics, &r->metrics, sizeof out->metrics);
     if (a->stage >= 2 && r->chart_source) {
         unwrap_chart_figures *cf = unwrap_chart_figures_compute(r);

@@ -91,6 +91,18 @@ neuv_status charts_split(const neuv_mesh *m, int *face_chart, int *n_charts, int
 neuv_status charts_smooth_boundaries(const neuv_mesh *m, const int *active, int *face_chart, int max_sweeps,
                                      int *moves);
 
+/* Puts every triangle of a polygon (face_polygon: the same id on
+ * consecutive faces; < 0: a face of no polygon) in one chart, the one
+ * holding most of its area, by moves that keep every chart a disk
+ * (charts/polygon_charts.c); only charts with active[c] != 0 give or take
+ * faces (active NULL: all). Output: split_left, the polygons still in more
+ * than one chart (may be NULL). Returns NEUV_OK or NEUV_ERR_NOMEM. */
+neuv_status charts_keep_polygons(const neuv_mesh *m, const int *face_polygon, const int *active, int *face_chart,
+                                 int *split_left);
+
+/* Polygons (as in charts_keep_polygons) in more than one chart. */
+int charts_count_split_polygons(int nf, const int *face_polygon, const int *face_chart);
+
 /* Renumbers chart ids in order of their first face (ids < 0 are left
  * alone). Inputs: nf, face_chart (#F, modified). Returns the number of
  * charts, or -1 on allocation failure. */

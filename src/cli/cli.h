@@ -60,6 +60,9 @@ int cli_write_text(const char *path, const char *text);
  * or `out` is a directory; returns 0 when it looks writable. */
 int cli_check_output_folder(const char *out);
 
+/* 1 when path ends in ext (".obj"), whatever the case. */
+int cli_has_extension(const char *path, const char *ext);
+
 /* Refuses to write onto an input file; returns 0 when `out` is safe. */
 int cli_check_output_not_input(const char *out, const char *in);
 

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -190,6 +191,12 @@ int cli_check_output_folder(const char *out)
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) return cli_error(out, "folder %s does not exist", dir);
     if (access(dir, W_OK) != 0) return cli_error(out, "folder %s is not writable", dir);
     return 0;
+}
+
+int cli_has_extension(const char *path, const char *ext)
+{
+    size_t n = strlen(path), e = strlen(ext);
+    return n >= e && strcasecmp(path + n - e, ext) == 0;
 }
 
 int cli_load_clean(const char *in, neuv_mesh **out, neuv_clean_report *report)

@@ -14,6 +14,7 @@ static const char *usage_text =
     "                   [--resolution PX] [--padding PX] [--allow-overlaps] [--no-cache] [--quiet]\n"
     "                   [--save-model M.neuv] [--model M.neuv [--finetune N] [--check-inference] [--lscm-baseline]\n"
     "                   [--shared-layer]] [--train-faces N] [--max-memory MIB] [--seam-angle DEG]\n"
+    "                   [--uv-channel 0|1]\n"
     "                   [--no-hard-edges]\n";
 
 /* Above this many faces the networks train on a simplified copy and the model
@@ -77,6 +78,7 @@ int cmd_unwrap(int argc, char **argv)
         if (cli_arg_int(argc, argv, &i, "--train-faces", &job.train_faces, &bad)) { train_faces_given = 1; continue; }
         if (cli_arg_int(argc, argv, &i, "--max-memory", &o.max_memory_mb, &bad)) { max_memory_given = 1; continue; }
         if (cli_arg_double(argc, argv, &i, "--seam-angle", &o.seam_angle, &bad)) { seam_angle_given = 1; continue; }
+        if (cli_arg_int(argc, argv, &i, "--uv-channel", &job.uv_channel, &bad)) continue;
         if (!strcmp(argv[i], "--check-inference")) { job.check_inference = 1; continue; }
         if (!strcmp(argv[i], "--lscm-baseline")) { job.lscm_baseline = 1; continue; }
         if (!strcmp(argv[i], "--shared-layer")) { job.shared_layer = 1; continue; }
@@ -118,6 +120,8 @@ int cmd_unwrap(int argc, char **argv)
         return cli_error(NULL, "--max-memory must be a size in MiB (without it: half of this machine's memory)");
     if (seam_angle_given && !(o.seam_angle > 0 && o.seam_angle < 180))
         return cli_error(NULL, "--seam-angle must be an angle in degrees between 0 and 180 (exclusive)");
+    if (job.uv_channel != 0 && job.uv_channel != 1)
+        return cli_error(NULL, "--uv-channel must be 0 (the atlas replaces the UVs) or 1 (the atlas as a second UV set)");
     if (finetune < 0 || finetune > 1000000) return cli_error(NULL, "--finetune must be a step count in 0..1000000");
     if (finetune > 0 && !job.model) return cli_error(NULL, "--finetune needs --model");
     job.finetune = finetune;
@@ -172,12 +176,19 @@ int cmd_unwrap(int argc, char **argv)
     if (rc == 0 && job.save_model) rc = cli_check_output_not_input(job.save_model, in);
     if (rc == 0 && job.save_model && job.model) rc = cli_check_output_not_input(job.save_model, job.model);
     if (rc == 0 && job.save_model) rc = cli_check_output_folder(job.save_model);
+    if (rc == 0 && job.uv_channel == 1 && cli_has_extension(job.output, ".obj"))
+        rc = cli_error(job.output, "--uv-channel 1 writes a second UV set, which OBJ cannot hold: write .ply, .glb or .gltf");
     if (rc) { free(owned_output); return rc; }
 
     double t = cli_now_seconds();
     neuv_mesh *mesh = NULL;
     neuv_status s = neuv_mesh_load(in, cli_callbacks(), &mesh);
     if (s != NEUV_OK) { free(owned_output); return cli_fail(in, s); }
+    if (job.uv_channel == 1 && !neuv_mesh_has_uv(mesh)) {
+        neuv_mesh_free(mesh);
+        free(owned_output);
+        return cli_error(in, "--uv-channel 1 keeps the file's UVs as the first set, but it has none");
+    }
     job.input_name = in;
     job.load_seconds = cli_now_seconds() - t;
     rc = unwrap_job_run(mesh, &o, &job);

@@ -106,13 +106,16 @@ static void source_summary(const neuv_report *rep, char *buf, size_t n)
     }
 }
 
-static int write_outputs(const neuv_atlas *atlas, const unwrap_job *job)
+static int write_outputs(neuv_atlas *atlas, const neuv_mesh *input, const unwrap_job *job)
 {
-    const neuv_mesh *out = neuv_atlas_mesh(atlas);
     double t = cli_now_seconds();
-    neuv_status s = neuv_mesh_save(out, job->output);
+    neuv_mesh *written = NULL;
+    neuv_status s = neuv_atlas_output_mesh(atlas, 0, input, job->uv_channel, &written);
+    if (s == NEUV_OK) s = neuv_mesh_save(written, job->output);
+    neuv_mesh_free(written);
     double export_seconds = cli_now_seconds() - t;
     if (s != NEUV_OK) return cli_fail(job->output, s);
+    const neuv_mesh *out = neuv_atlas_mesh(atlas);
 
     neuv_report rep;
     if ((s = neuv_atlas_get_report(atlas, &rep)) != NEUV_OK) return cli_fail(job->input_name, s);
@@ -137,6 +140,9 @@ static int write_outputs(const neuv_atlas *atlas, const unwrap_job *job)
         if (rep.repairs > 0) printf("  %d repairs (listed in the report)\n", rep.repairs);
         if (rep.seam_edges > 0)
             printf("  %d required seam edges (the report's seams), %d crossed\n", rep.seam_edges, rep.seams_crossed);
+        if (rep.polygons_split > 0)
+            printf("  %d of %d polygons split between charts (written as their triangles)\n", rep.polygons_split,
+                   rep.polygons);
         if (rep.hard_edges_not_kept > 0)
             printf("  %d hard edges of the file not kept: the model made the charts\n", rep.hard_edges_not_kept);
         if (rep.trained_on_copy)
@@ -157,7 +163,7 @@ int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const
     }
     if (s != NEUV_OK) { neuv_atlas_destroy(atlas); return cli_fail(job->input_name, s); }
     int rc = job->model ? apply_model(atlas, opts, job) : train(atlas, opts, job);
-    if (rc == 0) rc = write_outputs(atlas, job);
+    if (rc == 0) rc = write_outputs(atlas, mesh, job);
     neuv_atlas_destroy(atlas);
     return rc;
 }

@@ -20,11 +20,13 @@ typedef struct unwrap_job {
     int lscm_baseline;        /* --lscm-baseline (with --model): the model's charts flattened by LSCM */
     int finetune;             /* --finetune N (with a category --model) */
     int refine;               /* --refine N with --model; -1: the model's */
+    int uv_channel;           /* --uv-channel: 0 the atlas replaces the UVs, 1 a second set */
     int resolution, padding;  /* --resolution, --padding with --model; 0 and -1: the model's */
 } unwrap_job;
 
-/* Runs the pipeline (or applies job->model) and writes everything, the
- * model too with job->save_model; prints a summary unless quiet.
+/* Runs the pipeline (or applies job->model) and writes everything (the
+ * mesh as it came in with the atlas as its UVs, neuv_atlas_output_mesh),
+ * the model too with job->save_model; prints a summary unless quiet.
  * Returns the process exit code. */
 int unwrap_job_run(const neuv_mesh *mesh, const neuv_unwrap_options *opts, const unwrap_job *job);
 

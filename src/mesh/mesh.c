@@ -72,11 +72,16 @@ neuv_status mesh_set_face_material(neuv_mesh *m, const int *face_material)
     return NEUV_OK;
 }
 
-void mesh_drop_file_structure(neuv_mesh *m)
+void mesh_drop_polygons(neuv_mesh *m)
 {
     mem_free(m->face_polygon); mem_free(m->poly_start); mem_free(m->poly_corner);
     m->face_polygon = m->poly_start = m->poly_corner = NULL;
     m->np = 0;
+}
+
+void mesh_drop_file_structure(neuv_mesh *m)
+{
+    mesh_drop_polygons(m);
     mesh_attributes_free(m->attr);
     m->attr = NULL;
 }
@@ -131,6 +136,45 @@ static int material_count(const neuv_mesh *m)
     return n;
 }
 
+/* Appends the polygons of m (faces from face f0 of joined, polygons from
+ * p0, corners from c0); a mesh without polygons gives one per triangle. */
+static void append_polygons(neuv_mesh *joined, const neuv_mesh *m, int f0, int p0, int c0)
+{
+    if (m->np > 0) {
+        for (int f = 0; f < m->nf; f++) joined->face_polygon[f0 + f] = p0 + m->face_polygon[f];
+        for (int p = 0; p <= m->np; p++) joined->poly_start[p0 + p] = c0 + m->poly_start[p];
+        for (int c = 0; c < m->poly_start[m->np]; c++)
+            joined->poly_corner[c0 + c] = m->poly_corner[c] < 0 ? -1 : 3 * f0 + m->poly_corner[c];
+        return;
+    }
+    for (int f = 0; f <= m->nf; f++) {
+        if (f < m->nf) joined->face_polygon[f0 + f] = p0 + f;
+        joined->poly_start[p0 + f] = c0 + 3 * f;
+    }
+    for (int c = 0; c < 3 * m->nf; c++) joined->poly_corner[c0 + c] = 3 * f0 + c;
+}
+
+/* The polygons of joined (faces of a, then of b), when either has some. */
+static neuv_status join_polygons(neuv_mesh *joined, const neuv_mesh *a, const neuv_mesh *b)
+{
+    mesh_drop_polygons(joined);
+    if (!(a && a->np > 0) && b->np == 0) return NEUV_OK;
+    int npa = !a ? 0 : a->np > 0 ? a->np : a->nf, npb = b->np > 0 ? b->np : b->nf;
+    int nca = !a ? 0 : a->np > 0 ? a->poly_start[a->np] : 3 * a->nf;
+    int ncb = b->np > 0 ? b->poly_start[b->np] : 3 * b->nf;
+    joined->face_polygon = mem_alloc(sizeof(int) * (size_t)(joined->nf > 0 ? joined->nf : 1));
+    joined->poly_start = mem_alloc(sizeof(int) * ((size_t)npa + (size_t)npb + 1));
+    joined->poly_corner = mem_alloc(sizeof(int) * ((size_t)nca + (size_t)ncb + 1));
+    if (!joined->face_polygon || !joined->poly_start || !joined->poly_corner) {
+        mesh_drop_polygons(joined);
+        return error_nomem("polygons");
+    }
+    if (a) append_polygons(joined, a, 0, 0, 0);
+    append_polygons(joined, b, a ? a->nf : 0, npa, nca);
+    joined->np = npa + npb;
+    return NEUV_OK;
+}
+
 neuv_status mesh_join_marks(neuv_mesh *joined, const neuv_mesh *a, const neuv_mesh *b)
 {
     int nfa = a ? a->nf : 0;
@@ -154,7 +198,7 @@ neuv_status mesh_join_marks(neuv_mesh *joined, const neuv_mesh *a, const neuv_me
         int first = a ? material_count(a) : 0;
         for (int f = 0; f < b->nf; f++) joined->face_material[nfa + f] = first + (b->face_material ? b->face_material[f] : 0);
     }
-    return NEUV_OK;
+    return join_polygons(joined, a, b);
 }
 
 void mesh_free(neuv_mesh *m)

@@ -42,16 +42,20 @@ neuv_mesh *mesh_clone(const neuv_mesh *m);
 neuv_status mesh_set_normals(neuv_mesh *m, int nn, const double *normal, const int *tri_normal);
 /* Replaces the face materials of m (takes a copy); NULL removes them. */
 neuv_status mesh_set_face_material(neuv_mesh *m, const int *face_material);
-/* The normals and face materials of `joined`, whose faces are those of a
- * (may be NULL) then those of b: normals when both have them (b's indices
- * shifted), materials when either has them (b's numbered after a's; a mesh
- * without materials counts as one). NEUV_ERR_NOMEM on allocation failure. */
+/* The normals, face materials and polygons of `joined`, whose faces are
+ * those of a (may be NULL) then those of b: normals when both have them
+ * (b's indices shifted), materials when either has them (b's numbered
+ * after a's; a mesh without materials counts as one), polygons when either
+ * has them (a mesh without gives one per triangle). Not the attributes.
+ * NEUV_ERR_NOMEM on allocation failure. */
 neuv_status mesh_join_marks(neuv_mesh *joined, const neuv_mesh *a, const neuv_mesh *b);
 /* Copies the polygons and attributes of src into m, which has src's faces
  * (m's own are replaced). NEUV_ERR_NOMEM on allocation failure. */
 neuv_status mesh_copy_file_structure(neuv_mesh *m, const neuv_mesh *src);
 /* Removes m's polygons and attributes (after a change of its faces). */
 void mesh_drop_file_structure(neuv_mesh *m);
+/* Removes m's polygons only. */
+void mesh_drop_polygons(neuv_mesh *m);
 /* Replaces the UVs of m (takes a copy); nuv == 0 removes them. */
 neuv_status mesh_set_uv(neuv_mesh *m, int nuv, const double *uv, const int *tri_uv);
 void mesh_free(neuv_mesh *m);

@@ -227,6 +227,21 @@ neuv_status unwrap_keep_provenance(struct neuv_unwrap_result *r, const chart_pie
     return NEUV_OK;
 }
 
+/* After a split of chart c (or of each parent[k]) into it and the charts
+ * from `first` on: their polygons whole again (charts/polygon_charts.c), between them only, so
+ * that no chart already flattened changes. */
+static neuv_status rejoin_polygons(struct neuv_unwrap_result *r, const neuv_mesh *m, const int *parent, int c,
+                                   int first)
+{
+    if (!r->face_polygon) return NEUV_OK;
+    int *act = mem_calloc((size_t)r->n_charts, sizeof(int));
+    if (!act) return error_nomem("the polygons");
+    for (int k = first; k < r->n_charts; k++) act[k] = act[parent ? parent[k] : c] = 1;
+    neuv_status s = charts_keep_polygons(m, r->face_polygon, act, r->face_chart, NULL);
+    mem_free(act);
+    return s;
+}
+
 static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m, const double *corner_uv,
                                       chart_piece **pieces_out, int *cap_out)
 {
@@ -270,6 +285,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                  * halves may each be injective under the same map. */
                 int before = r->n_charts, depth = p->net_depth + 1;
                 if ((s = charts_split(m, r->face_chart, &r->n_charts, c)) != NEUV_OK) break;
+                if ((s = rejoin_polygons(r, m, NULL, c, before)) != NEUV_OK) break;
                 splits++;
                 unwrap_add_repair(r, c, "the networks' map crossed the chart's own boundary (%d crossings); split "
                                   "into %d charts, each checked under the same map", chk.boundary_crossings,
@@ -306,6 +322,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
         describe_failure(why, sizeof why, &chk);
         int before = r->n_charts;
         s = charts_split(m, r->face_chart, &r->n_charts, c);
+        if (s == NEUV_OK) s = rejoin_polygons(r, m, NULL, c, before);
         if (s != NEUV_OK) break;
         splits++;
         unwrap_add_repair(r, c, "%s map folded (%s); split into %d charts and re-flattened",
@@ -371,7 +388,9 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
     int *parent = NULL, before = r->n_charts;
     pack_split_report rep;
     neuv_status s = pack_split_charts(m, r->face_chart, &r->n_charts, &so, &parent, &rep);
-    if (s != NEUV_OK) return s;
+    /* A piece keeps its parent's map, so a triangle may go back to a sibling. */
+    if (s == NEUV_OK && r->n_charts > before) s = rejoin_polygons(r, m, parent, -1, before);
+    if (s != NEUV_OK) { mem_free(parent); return s; }
     r->pack_splits = rep.splits;
     r->pack_split_trials = rep.trials;
     if (r->n_charts > before && r->chart_source) {
@@ -415,17 +434,40 @@ void unwrap_stage_time(struct neuv_unwrap_result *r, int stage, double t0)
     r->total_seconds = t;
 }
 
-neuv_status unwrap_clean_copy(const neuv_mesh *in, neuv_mesh **out, mesh_clean_report *report)
+neuv_status unwrap_clean_copy(const neuv_mesh *in, neuv_mesh **out, mesh_clean_report *report, int **face_origin)
 {
     *out = NULL;
+    if (face_origin) *face_origin = NULL;
     neuv_mesh *m = mesh_clone(in);
     if (!m) return error_nomem("the mesh");
     mesh_set_uv(m, 0, NULL, NULL);
-    neuv_status s = mesh_clean(m, NULL, report);
+    neuv_status s = NEUV_OK;
+    if (face_origin) {
+        /* The copy's UVs are free (the atlas makes its own), and cleaning
+         * keeps UV corners with their faces: each corner carries the number
+         * of its face through the repairs. */
+        int *tri_uv = mem_alloc(sizeof(int) * 3 * (size_t)in->nf);
+        double *uv = mem_calloc(2 * (size_t)in->nf, sizeof(double));
+        if (!tri_uv || !uv) s = error_nomem("the mesh");
+        for (int f = 0; s == NEUV_OK && f < in->nf; f++) tri_uv[3 * f] = tri_uv[3 * f + 1] = tri_uv[3 * f + 2] = f;
+        if (s == NEUV_OK) s = mesh_set_uv(m, in->nf, uv, tri_uv);
+        mem_free(tri_uv);
+        mem_free(uv);
+    }
+    if (s == NEUV_OK) s = mesh_clean(m, NULL, report);
     if (s == NEUV_OK && m->nf == 0)
         s = error_set(NEUV_ERR_INPUT, "no faces left after cleaning (every face was degenerate)");
     if (s == NEUV_OK && !(mesh_total_area(m) > 0)) s = error_set(NEUV_ERR_INPUT, "the mesh has zero area");
-    if (s != NEUV_OK) { mesh_free(m); return s; }
+    if (s == NEUV_OK && face_origin) {
+        if (!(*face_origin = mem_alloc(sizeof(int) * (size_t)m->nf))) s = error_nomem("the mesh");
+        for (int f = 0; s == NEUV_OK && f < m->nf; f++) (*face_origin)[f] = m->tri_uv[3 * f];
+        if (s == NEUV_OK) s = mesh_set_uv(m, 0, NULL, NULL);
+    }
+    if (s != NEUV_OK) {
+        mesh_free(m);
+        if (face_origin) { mem_free(*face_origin); *face_origin = NULL; }
+        return s;
+    }
     *out = m;
     return NEUV_OK;
 }
@@ -529,6 +571,23 @@ static neuv_status charts_by_patchnet(struct neuv_unwrap_result *r, const unwrap
     return NEUV_OK;
 }
 
+/* r->face_polygon from the input's polygons, through the cleaned faces'
+ * origins; polygons of 3 corners are left out (nothing to keep whole). */
+static neuv_status polygons_of_faces(struct neuv_unwrap_result *r, const neuv_mesh *in, const int *face_origin)
+{
+    const neuv_mesh *m = r->mesh;
+    r->polygons = 0;
+    for (int p = 0; p < in->np; p++) r->polygons += in->poly_start[p + 1] - in->poly_start[p] > 3;
+    if (r->polygons == 0) return NEUV_OK;
+    r->face_polygon = mem_alloc(sizeof(int) * (size_t)m->nf);
+    if (!r->face_polygon) return error_nomem("the polygons");
+    for (int f = 0; f < m->nf; f++) {
+        int p = in->face_polygon[face_origin[f]];
+        r->face_polygon[f] = in->poly_start[p + 1] - in->poly_start[p] > 3 ? p : -1 - f;
+    }
+    return NEUV_OK;
+}
+
 neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *in, const unwrap_plan *plan,
                                 float **features_out, int *feature_dim_out)
 {
@@ -538,7 +597,10 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
     double t = now_seconds();
     r->input_vertices = in->nv;
     r->input_faces = in->nf;
-    neuv_status s = unwrap_clean_copy(in, &r->mesh, &r->clean);
+    int *face_origin = NULL;
+    neuv_status s = unwrap_clean_copy(in, &r->mesh, &r->clean, in->np > 0 ? &face_origin : NULL);
+    if (s == NEUV_OK && face_origin) s = polygons_of_faces(r, in, face_origin);
+    mem_free(face_origin);
     if (s == NEUV_OK) s = unwrap_seams_cut(r, in, plan->keep_model, plan->apply != NULL);
     /* Not for a saved model, made or applied: its stored surface and chart
      * frames are in the mesh's own units. */
@@ -550,6 +612,8 @@ neuv_status unwrap_stage_charts(struct neuv_unwrap_result *r, const neuv_mesh *i
     if ((s = stage_end(r, s)) != NEUV_OK) return s;
     if (plan->apply) s = unwrap_apply_charts(r, plan->model, plan->apply);
     else s = charts_by_patchnet(r, plan, features_out, feature_dim_out);
+    if (s == NEUV_OK && r->face_polygon)
+        s = charts_keep_polygons(r->mesh, r->face_polygon, NULL, r->face_chart, &r->polygons_split);
     if ((s = stage_end(r, s)) != NEUV_OK) {
         mem_free(*features_out);
         *features_out = NULL;
@@ -677,6 +741,7 @@ neuv_status unwrap_stage_pack(struct neuv_unwrap_result *r, const unwrap_plan *p
         r->pos_exp = 0;
     }
     if ((s = unwrap_seams_join(r)) != NEUV_OK) return s;
+    if (r->face_polygon) r->polygons_split = charts_count_split_polygons(r->mesh->nf, r->face_polygon, r->face_chart);
     /* The metrics of the mesh as `neuv eval` will read it back (positions welded). */
     double t = now_seconds();
     s = unwrap_metrics(r->mesh, &r->metrics);
@@ -728,6 +793,7 @@ neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_
         copy_block(r->model.vertex_source_chart, sizeof(int) * (size_t)(r->mesh ? r->mesh->nv : 0), &failed);
     c->seam_pair = copy_block(r->seam_pair, sizeof(int) * 2 * (size_t)r->seam_edges, &failed);
     c->seam_origin = copy_block(r->seam_origin, sizeof(int) * (size_t)(r->mesh ? r->mesh->nv : 0), &failed);
+    c->face_polygon = copy_block(r->face_polygon, sizeof(int) * (size_t)(r->mesh ? r->mesh->nf : 0), &failed);
     c->cap_repairs = c->repairs ? r->n_repairs : 0;
     if (failed) { neuv_unwrap_result_free(c); return error_nomem("a copy of the result"); }
     *out = c;
@@ -830,6 +896,7 @@ void neuv_unwrap_result_free(neuv_unwrap_result *r)
     mem_free(r->model.vertex_source_chart);
     mem_free(r->seam_pair);
     mem_free(r->seam_origin);
+    mem_free(r->face_polygon);
     if (r->patchnet) patchnet_model_free(r->patchnet);
     mem_free(r->patchnet);
     param_net_model_free(r->param);

@@ -78,7 +78,7 @@ static neuv_status prepare_shape(const neuv_mesh *in, int index, int use_cache, 
 {
     /* The pipeline's own cleaning (unwrap_internal.h), so that a shape is
      * trained on as an unseen shape will be unwrapped. */
-    neuv_status s = unwrap_clean_copy(in, &c->mesh, NULL);
+    neuv_status s = unwrap_clean_copy(in, &c->mesh, NULL, NULL);
     if (s == NEUV_ERR_INPUT) {
         char why[256];
         snprintf(why, sizeof why, "%s", neuv_last_error());

@@ -76,6 +76,13 @@ struct neuv_unwrap_result {
     int *seam_origin;         /* while cut: the cleaned mesh's vertex each vertex copies; else NULL */
     int seam_nv;              /* the cleaned mesh's vertex count */
 
+    /* The file's polygons (charts/polygon_charts.c): each face's polygon
+     * (a polygon's triangles are consecutive faces), NULL when the input
+     * gave only triangles. */
+    int *face_polygon;        /* #F or NULL */
+    int polygons;             /* polygons of more than 3 corners in the input */
+    int polygons_split;       /* of which the charts still split (written back as their triangles) */
+
     /* Kept for --save-model (NULL / 0 otherwise). */
     int *chart_net;           /* n_charts: network chart whose map chart c uses, -1 for a classic map */
     int *chart_mirrored;      /* n_charts: 1 when the injectivity check mirrored the chart before packing */
@@ -240,8 +247,10 @@ neuv_status unwrap_run_stages(struct neuv_unwrap_result *r, const neuv_mesh *in,
  * (the sum of the stages): the one clock of every path. */
 void unwrap_stage_time(struct neuv_unwrap_result *r, int stage, double t0);
 /* A copy of `in` without UVs, cleaned (mesh/clean.h; report may be NULL),
- * refused with NEUV_ERR_INPUT when no face of non-zero area is left. */
-neuv_status unwrap_clean_copy(const neuv_mesh *in, neuv_mesh **out, mesh_clean_report *report);
+ * refused with NEUV_ERR_INPUT when no face of non-zero area is left.
+ * face_origin (may be NULL): the face of `in` each cleaned face is (#F of
+ * the copy; the caller frees). */
+neuv_status unwrap_clean_copy(const neuv_mesh *in, neuv_mesh **out, mesh_clean_report *report, int **face_origin);
 
 /* The pipeline; keep_model: also keep the networks and per-chart maps
  * (chart_net, chart_mirrored, face_label, patchnet, param) for a saved model. */

@@ -274,6 +274,12 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "crossed"); json_int(&w, r->seam_crossed);
     json_end_object(&w);
 
+    json_key(&w, "polygons");
+    json_begin_object(&w);
+    json_key(&w, "input"); json_int(&w, r->polygons);
+    json_key(&w, "split"); json_int(&w, r->polygons_split);
+    json_end_object(&w);
+
     json_key(&w, "cleaning");
     write_cleaning(&w, &r->clean);
 
