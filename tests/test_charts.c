@@ -550,11 +550,69 @@ static void test_smooth_boundaries(void)
     mesh_free(m);
 }
 
+/* Polygons kept whole: a 16 x 16 grid of quads (two triangles each) cut
+ * by a slanted line through the cells, so that many quads have a triangle
+ * on each side; charts_keep_polygons puts every quad on one chart, keeps
+ * both charts disks, and moves nothing where a chart is inactive. */
+static int quads_split(const neuv_mesh *m, const int *chart)
+{
+    int n = 0;
+    for (int f = 0; f < m->nf; f += 2) n += chart[f] != chart[f + 1];
+    return n;
+}
+
+static void test_keep_polygons(void)
+{
+    neuv_mesh *m = shape_grid(16, 16, 1.0, 1.0, 0);
+    int *poly = malloc(sizeof(int) * (size_t)m->nf);
+    int *chart = malloc(sizeof(int) * (size_t)m->nf);
+    int *copy = malloc(sizeof(int) * (size_t)m->nf);
+    for (int f = 0; f < m->nf; f++) {
+        double c[3];
+        centroid(m, f, c);
+        poly[f] = f / 2;
+        chart[f] = c[0] - 0.8 * c[1] < 0.1 ? 0 : 1;
+    }
+    int before = quads_split(m, chart);
+    CHECK(before >= 8);
+    CHECK_INT(count_bad_charts(m, chart, 2), 0);
+    CHECK_INT(charts_count_split_polygons(m->nf, poly, chart), before);
+    memcpy(copy, chart, sizeof(int) * (size_t)m->nf);
+    int left = -1, active[2] = {1, 0};
+    CHECK_INT(charts_keep_polygons(m, poly, active, chart, &left), NEUV_OK);
+    CHECK_INT(left, before);
+    CHECK(memcmp(copy, chart, sizeof(int) * (size_t)m->nf) == 0);
+    CHECK_INT(charts_keep_polygons(m, poly, NULL, chart, &left), NEUV_OK);
+    CHECK_INT(left, 0);
+    CHECK_INT(quads_split(m, chart), 0);
+    CHECK_INT(charts_count_split_polygons(m->nf, poly, chart), 0);
+    CHECK_INT(count_bad_charts(m, chart, 2), 0);
+    /* Only triangles of split quads moved. */
+    int moved = 0, wrong = 0;
+    for (int f = 0; f < m->nf; f++) {
+        if (chart[f] == copy[f]) continue;
+        moved++;
+        wrong += copy[f ^ 1] == copy[f];
+    }
+    CHECK_INT(moved, before);
+    CHECK_INT(wrong, 0);
+    /* Faces of no polygon (negative ids) are left alone. */
+    for (int f = 0; f < m->nf; f++) poly[f] = -1 - f;
+    memcpy(chart, copy, sizeof(int) * (size_t)m->nf);
+    CHECK_INT(charts_keep_polygons(m, poly, NULL, chart, &left), NEUV_OK);
+    CHECK_INT(left, 0);
+    CHECK(memcmp(copy, chart, sizeof(int) * (size_t)m->nf) == 0);
+    CHECK_INT(charts_keep_polygons(NULL, poly, NULL, chart, &left), NEUV_ERR_INPUT);
+    free(poly); free(chart); free(copy);
+    mesh_free(m);
+}
+
 int main(void)
 {
     test_cube_sides();
     test_split_long_axis();
     test_smooth_boundaries();
+    test_keep_polygons();
     test_sphere();
     test_torus_genus2();
     neuv_mesh *m = load_fertility();
