@@ -598,12 +598,100 @@ static void test_user_seams(void)
     neuv_atlas_destroy(at);
 }
 
+/* neuv_atlas_output_mesh: the mesh as read (quads, materials, its own
+ * UVs) with the atlas as its UVs, written back with its quads and
+ * materials; the refusals. */
+static void test_output_mesh(void)
+{
+    /* A strip of 6 quads in two materials, with UVs of its own. */
+    char obj[2048];
+    int n = snprintf(obj, sizeof obj, "mtllib strip.mtl\n");
+    for (int i = 0; i <= 6; i++)
+        n += snprintf(obj + n, sizeof obj - (size_t)n, "v %d 0 0\nv %d 1 0.%d\n", i, i, i);
+    for (int i = 0; i <= 6; i++) n += snprintf(obj + n, sizeof obj - (size_t)n, "vt 0.%d 0\nvt 0.%d 1\n", i, i);
+    for (int i = 0; i < 6; i++) {
+        if (i % 3 == 0) n += snprintf(obj + n, sizeof obj - (size_t)n, "usemtl m%d\n", i / 3);
+        int a = 2 * i + 1;
+        n += snprintf(obj + n, sizeof obj - (size_t)n, "f %d/%d %d/%d %d/%d %d/%d\n", a, a, a + 2, a + 2, a + 3,
+                      a + 3, a + 1, a + 1);
+    }
+    const char *in_path = write_tmp_file("test_api_strip.obj", obj, (size_t)n);
+    neuv_mesh *in = NULL, *other = NULL, *out = NULL;
+    CHECK_INT(neuv_mesh_load(in_path, NULL, &in), NEUV_OK);
+    if (!in) return;
+    CHECK_INT(neuv_mesh_face_count(in), 12);
+    neuv_atlas *atlas = NULL;
+    CHECK_INT(neuv_atlas_create(&atlas), NEUV_OK);
+    CHECK_INT(neuv_atlas_add_loaded_mesh(atlas, in), NEUV_OK);
+    CHECK_INT(neuv_atlas_output_mesh(atlas, 0, in, 0, &out), NEUV_ERR_INPUT); /* not packed yet */
+    CHECK(out == NULL);
+    neuv_unwrap_options uo = quick_options(NEUV_METHOD_LSCM);
+    uo.charts = 1;
+    CHECK_INT(neuv_atlas_generate(atlas, &uo), NEUV_OK);
+    CHECK_INT(neuv_atlas_output_mesh(atlas, 0, in, 0, &out), NEUV_OK);
+    CHECK_INT(neuv_mesh_vertex_count(out), neuv_mesh_vertex_count(in));
+    CHECK_INT(neuv_mesh_face_count(out), 12);
+    const char *out_path = tmp_path("test_api_strip_uv.obj");
+    CHECK_INT(neuv_mesh_save(out, out_path), NEUV_OK);
+    neuv_mesh_free(out);
+    out = NULL;
+    /* Six quads of four corners, each under its material, and new UVs. */
+    FILE *fp = fopen(out_path, "r");
+    char line[256];
+    int quads = 0, materials = 0, vt = 0, other_faces = 0;
+    while (fp && fgets(line, sizeof line, fp)) {
+        if (!strncmp(line, "usemtl m", 8)) materials++;
+        if (!strncmp(line, "vt ", 3)) vt++;
+        if (!strncmp(line, "f ", 2)) {
+            int corners = 0;
+            for (char *t = strtok(line + 2, " \n"); t; t = strtok(NULL, " \n")) corners++;
+            if (corners == 4) quads++;
+            else other_faces++;
+        }
+    }
+    if (fp) fclose(fp);
+    CHECK_INT(quads, 6);
+    CHECK_INT(other_faces, 0);
+    CHECK_INT(materials, 2);
+    CHECK_INT(vt, 16); /* two charts (the material border is a seam): its 2 vertices twice */
+    /* The first UV set kept: a mesh without UVs is refused, as is a
+     * second set in OBJ. */
+    CHECK_INT(neuv_atlas_output_mesh(atlas, 0, in, 1, &out), NEUV_OK);
+    CHECK_INT(neuv_mesh_save(out, tmp_path("test_api_strip_uv1.obj")), NEUV_ERR_INPUT);
+    neuv_mesh_free(out);
+    out = NULL;
+    CHECK_INT(neuv_atlas_output_mesh(atlas, 0, in, 2, &out), NEUV_ERR_INPUT);
+    CHECK_INT(neuv_atlas_output_mesh(atlas, 1, in, 0, &out), NEUV_ERR_INPUT);
+    /* Another mesh of the same size is not the one added. */
+    float pos[14 * 3];
+    uint32_t idx[12 * 3];
+    for (int v = 0; v < 14; v++) { pos[3 * v] = (float)(v / 2); pos[3 * v + 1] = (float)(v % 2); pos[3 * v + 2] = 0; }
+    for (int i = 0; i < 6; i++) {
+        uint32_t a = (uint32_t)(2 * i), q[6] = {a, a + 2, a + 3, a, a + 3, a + 1};
+        memcpy(idx + 6 * i, q, sizeof q);
+    }
+    neuv_mesh_decl d;
+    neuv_mesh_decl_init(&d);
+    d.positions = pos;
+    d.vertex_count = 14;
+    d.indices = idx;
+    d.index_count = 36;
+    CHECK_INT(neuv_mesh_create(&d, &other), NEUV_OK);
+    CHECK_INT(neuv_atlas_output_mesh(atlas, 0, other, 0, &out), NEUV_ERR_INPUT);
+    CHECK_INT(neuv_atlas_output_mesh(atlas, 0, other, 1, &out), NEUV_ERR_INPUT); /* and it has no UVs */
+    CHECK(out == NULL);
+    neuv_mesh_free(other);
+    neuv_atlas_destroy(atlas);
+    neuv_mesh_free(in);
+}
+
 int main(void)
 {
     test_mesh_from_arrays();
     test_stages_and_generate();
     test_two_meshes();
     test_user_seams();
+    test_output_mesh();
     test_callbacks_and_cancel();
     test_models();
     test_pack_existing();
