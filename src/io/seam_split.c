@@ -48,6 +48,13 @@ neuv_status seam_split_vertices(const neuv_mesh *m, seam_split *out)
     if (m->nuv > 0 && m->tri_uv) { cs.uv = m->uv; cs.tri_uv = m->tri_uv; }
     if (m->nn > 0 && m->tri_normal) { cs.normal = m->normal; cs.tri_normal = m->tri_normal; }
     if (m->attr && m->attr->nuv0 > 0 && m->attr->uv0 && m->attr->tri_uv0) { cs.uv0 = m->attr->uv0; cs.tri_uv0 = m->attr->tri_uv0; }
+    /* A mesh made by neuv is consistent; the check turns a bug elsewhere
+     * into a message instead of a wild read. */
+    for (size_t c = 0; c < nc; c++)
+        if ((cs.uv && (m->tri_uv[c] < 0 || m->tri_uv[c] >= m->nuv)) ||
+            (cs.normal && (m->tri_normal[c] < 0 || m->tri_normal[c] >= m->nn)) ||
+            (cs.uv0 && (m->attr->tri_uv0[c] < 0 || m->attr->tri_uv0[c] >= m->attr->nuv0)))
+            return error_set(NEUV_ERR_INTERNAL, "cannot save: face %zu has a UV or normal index out of range", c / 3);
     out->tri = mem_alloc(sizeof(int) * (nc > 0 ? nc : 1));
     if (!out->tri) return error_nomem("split faces");
     if (!cs.uv && !cs.normal && !cs.uv0) {
