@@ -112,6 +112,30 @@ static void test_gltf_materials_normals(void)
              "{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"COLOR_0\":2},\"indices\":3,\"material\":1},"
              "{\"attributes\":{\"POSITION\":0,\"NORMAL\":1,\"COLOR_0\":2},\"indices\":4,\"material\":0}]}]}",
              n);
+    /* A primitive without a material: finish puts an unnamed material
+     * first, and the file's index is still known for the other. */
+    {
+        char text2[4096];
+        snprintf(text2, sizeof text2, "%s", text);
+        char *at = strstr(text2, ",\"material\":1}");
+        CHECK(at != NULL);
+        if (at) memmove(at, at + 13, strlen(at + 13) + 1);
+        neuv_mesh *u = load(write_tmp_file("keep_unnamed.gltf", text2, strlen(text2)));
+        for (int round = 0; u && round < 2; round++) {
+            CHECK(u->attr && u->face_material && u->attr->gltf_material && u->attr->n_materials == 3);
+            if (!(u->attr && u->face_material && u->attr->gltf_material && u->attr->n_materials == 3)) break;
+            for (int f = 0; f < u->nf; f++) {
+                int from0 = vertex_at(u->pos + 3 * (size_t)u->tri[3 * f]) == 0 || vertex_at(u->pos + 3 * (size_t)u->tri[3 * f + 1]) == 0 ||
+                            vertex_at(u->pos + 3 * (size_t)u->tri[3 * f + 2]) == 0;
+                CHECK_INT(u->attr->gltf_material[u->face_material[f]], from0 ? -1 : 0);
+            }
+            const char *path = tmp_path("keep_unnamed_out.glb");
+            CHECK(neuv_mesh_save(u, path) == NEUV_OK);
+            mesh_free(u);
+            u = load(path);
+        }
+        mesh_free(u);
+    }
     neuv_mesh *m = load(write_tmp_file("keep.gltf", text, strlen(text)));
     if (!m) return;
     check_gltf_kept(m);
