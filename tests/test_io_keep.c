@@ -64,6 +64,12 @@ static void check_gltf_kept(const neuv_mesh *m)
     CHECK(a->gltf_materials && strstr(a->gltf_materials, "baseColorFactor") && strstr(a->gltf_materials, "\"blue\""));
     CHECK(a->gltf_material != NULL);
     CHECK_INT(a->color_channels, 4);
+    /* What the materials refer to: the image (in a bufferView) as a data
+     * URI, the material extensions and not the geometry ones. */
+    CHECK(a->gltf_textures && strstr(a->gltf_textures, "\"textures\":[{\"source\":0}]") &&
+          strstr(a->gltf_textures, "\"uri\":\"data:image/png;base64,AAECAgEDAAA=\"") &&
+          strstr(a->gltf_textures, "KHR_materials_unlit") && !strstr(a->gltf_textures, "draco") &&
+          !strstr(a->gltf_textures, "bufferView"));
     for (int f = 0; f < 2; f++) {
         int v[3];
         for (int k = 0; k < 3; k++) v[k] = vertex_at(m->pos + 3 * (size_t)m->tri[3 * f + k]);
@@ -98,6 +104,8 @@ static void test_gltf_materials_normals(void)
     snprintf(text, sizeof text,
              "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
              "\"nodes\":[{\"name\":\"Thing\",\"mesh\":0}],"
+             "\"textures\":[{\"source\":0}],\"images\":[{\"bufferView\":3,\"mimeType\":\"image/png\"}],"
+             "\"extensionsUsed\":[\"KHR_materials_unlit\",\"KHR_draco_mesh_compression\"],"
              "\"materials\":[{\"name\":\"red\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]}},"
              "{\"name\":\"blue\",\"doubleSided\":true}],"
              "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"keep.bin\"}],"
