@@ -10,7 +10,17 @@
  * byte/short, VEC2; v flipped to neuv's bottom-left origin), NORMAL (float
  * VEC3, turned with the node; left out otherwise) and each primitive's
  * material (they mark hard edges: mesh/hard_edges.h), indices
- * (unsigned byte/short/int). Buffers come from the GLB's BIN chunk, base64
+ * (unsigned byte/short/int), COLOR_0 (float, or normalized unsigned
+ * byte/short, VEC3 or VEC4; kept when every primitive has it).
+ * Kept in the mesh's attributes to be written back (io/gltf_write.c): the
+ * materials array (re-serialized from the parsed JSON: the same values and
+ * key order, numbers in their shortest exact form) with the textures,
+ * samplers and images it refers to (images stored in a bufferView become
+ * data URIs), the material names, each face_material value's index in the
+ * file (attr->gltf_material; face_material is the file's index, shifted by
+ * one when some primitive has no material) and the first mesh node's name.
+ * TEXCOORD_0 is the mesh's UVs; TEXCOORD_1 and other sets are not kept.
+ * Buffers come from the GLB's BIN chunk, base64
  * data URIs, or files beside the .gltf. Refused with a message: sparse
  * accessors, accessors without a bufferView, Draco or other required
  * extensions, offsets or counts that leave their buffer, node trees that are
@@ -25,10 +35,13 @@
 
 #include "core/error.h"
 #include "core/json_reader.h"
+#include "core/json_writer.h"
+#include "core/log.h"
 #include "core/mem.h"
 #include "io/base64.h"
 #include "io/mesh_builder.h"
 #include "io/mesh_io.h"
+#include "mesh/mesh_attributes.h"
 
 /* More vertices than this, after instancing, is refused rather than risked. */
 #define GLTF_MAX_VERTICES 50000000LL
@@ -52,6 +65,10 @@ typedef struct gltf_file {
     mesh_builder *b;
     long long vertices; /* added so far, instances included */
     int faces;          /* primitives' triangles, for messages */
+    float *color;       /* #V by 4: COLOR_0 of the vertices added */
+    size_t cap_color;
+    int prims_with_color, prims_without_color, color4;
+    const char *node_name; /* the first mesh node's name (in root) */
 } gltf_file;
 
 typedef struct affine { double m[3][4]; } affine;
@@ -269,6 +286,14 @@ static neuv_status add_primitive(gltf_file *g, const json_value *prim, long long
         if ((s = get_accessor(g, json_get(attr, "NORMAL"), &nrm))) return s;
         has_normal = nrm.comps == 3 && nrm.type == GL_FLOAT && nrm.count == pos.count;
     }
+    /* Colours are kept for writing back; one of another layout is left out. */
+    accessor col = {0};
+    int has_color = json_get(attr, "COLOR_0") != NULL;
+    if (has_color) {
+        if ((s = get_accessor(g, json_get(attr, "COLOR_0"), &col))) return s;
+        has_color = (col.comps == 3 || col.comps == 4) && col.count == pos.count &&
+                    (col.type == GL_FLOAT || (col.normalized && (col.type == GL_UNSIGNED_BYTE || col.type == GL_UNSIGNED_SHORT)));
+    }
     long long material = -1;
     if (json_get(prim, "material") && !json_int_in(json_get(prim, "material"), 0, INT_MAX / 2, &material))
         return bad("mesh %lld: a primitive's material is not a material index", (long long)mi);
@@ -284,6 +309,26 @@ static neuv_status add_primitive(gltf_file *g, const json_value *prim, long long
 
     mesh_builder *b = g->b;
     int base = b->nv, uv_base = b->nuv, normal_base = b->nn;
+    if (has_color) {
+        g->prims_with_color++;
+        g->color4 |= col.comps == 4;
+    } else {
+        g->prims_without_color++;
+    }
+    if (g->prims_without_color == 0) {
+        size_t need = 4 * ((size_t)base + (size_t)pos.count);
+        if (need > g->cap_color) {
+            size_t cap = need > 2 * g->cap_color ? need : 2 * g->cap_color;
+            float *c = mem_realloc(g->color, cap * sizeof(float));
+            if (!c) return error_nomem("vertex colours");
+            g->color = c;
+            g->cap_color = cap;
+        }
+        double cs = col.type == GL_FLOAT ? 1 : col.type == GL_UNSIGNED_BYTE ? 1.0 / 255 : 1.0 / 65535;
+        for (long long i = 0; i < pos.count; i++)
+            for (int k = 0; k < 4; k++)
+                g->color[4 * ((size_t)base + (size_t)i) + (size_t)k] = k < col.comps ? (float)(cs * component(&col, i, k)) : 1.0f;
+    }
     b->material = (int)material;
     /* Normals go through the cofactor matrix of the node's linear part (the
      * inverse transpose times the determinant), sign fixed so that a
@@ -404,6 +449,8 @@ static neuv_status add_node(gltf_file *g, const json_value *index, const affine 
     neuv_status s = local_transform(node, ni, &L);
     if (s) return s;
     T = compose(parent, &L);
+    if (json_get(node, "mesh") && !g->node_name && json_get(node, "name") && json_get(node, "name")->type == JSON_STRING)
+        g->node_name = json_get(node, "name")->string;
     if (json_get(node, "mesh") && (s = add_mesh(g, json_get(node, "mesh"), &T))) return s;
     const json_value *kids = json_get(node, "children");
     if (kids && kids->type != JSON_ARRAY) return bad("node %lld: children is not an array", (long long)ni);
@@ -459,6 +506,180 @@ static neuv_status add_scene(gltf_file *g)
     }
     mem_free(seen);
     return s;
+}
+
+/* ---- what is kept beyond the surface -------------------------------- */
+
+/* Writes v into w; 0 when it is nested too deep for the writer (the reader
+ * allows JSON_MAX_DEPTH, the writer a little less). */
+static int put_json(json_writer *w, const json_value *v, int depth)
+{
+    if (depth > 48) return 0;
+    switch (v->type) {
+    case JSON_NULL: json_null(w); return 1;
+    case JSON_BOOL: json_bool(w, v->boolean); return 1;
+    case JSON_NUMBER: json_number(w, v->number); return 1;
+    case JSON_STRING: json_string(w, v->string); return 1;
+    case JSON_ARRAY:
+        json_begin_array(w);
+        for (int i = 0; i < v->n; i++)
+            if (!put_json(w, &v->items[i], depth + 1)) return 0;
+        json_end_array(w);
+        return 1;
+    default:
+        json_begin_object(w);
+        for (int i = 0; i < v->n; i++) {
+            json_key(w, v->keys[i]);
+            if (!put_json(w, &v->items[i], depth + 1)) return 0;
+        }
+        json_end_object(w);
+        return 1;
+    }
+}
+
+/* An image stored in a bufferView, written with its bytes as a data URI so
+ * that it needs no buffer of the source; 0 when its view is not valid. */
+static int put_image(const gltf_file *g, json_writer *w, const json_value *img)
+{
+    long long vi, bi, off = 0, len;
+    const json_value *view = json_at(g->views, json_int_in(json_get(img, "bufferView"), 0, INT32_MAX, &vi) ? (int)vi : -1);
+    const json_value *mime = json_get(img, "mimeType");
+    if (!view || !mime || mime->type != JSON_STRING || strlen(mime->string) > 100 ||
+        !json_int_in(json_get(view, "buffer"), 0, INT32_MAX, &bi) || bi >= g->nbuffers ||
+        (json_get(view, "byteOffset") && !json_int_in(json_get(view, "byteOffset"), 0, INT32_MAX, &off)) ||
+        !json_int_in(json_get(view, "byteLength"), 1, INT32_MAX, &len) ||
+        (unsigned long long)off + (unsigned long long)len > g->buffers[bi].n)
+        return 0;
+    char *b64 = base64_encode(g->buffers[bi].p + off, (size_t)len);
+    if (!b64) return 0;
+    size_t ul = strlen(b64) + strlen(mime->string) + 16;
+    char *uri = mem_alloc(ul);
+    if (uri) snprintf(uri, ul, "data:%s;base64,%s", mime->string, b64);
+    mem_free(b64);
+    if (!uri) return 0;
+    json_begin_object(w);
+    for (int i = 0; i < img->n; i++) {
+        if (!strcmp(img->keys[i], "bufferView") || !strcmp(img->keys[i], "uri")) continue;
+        json_key(w, img->keys[i]);
+        if (!put_json(w, &img->items[i], 1)) { mem_free(uri); return 0; }
+    }
+    json_key(w, "uri");
+    json_string(w, uri);
+    json_end_object(w);
+    mem_free(uri);
+    return 1;
+}
+
+/* The JSON text of v, NULL when it cannot be kept. */
+static char *json_text_of(const json_value *v)
+{
+    json_writer w;
+    json_init(&w);
+    int ok = put_json(&w, v, 0);
+    char *text = ok && !w.failed ? attr_strndup(json_text(&w), strlen(json_text(&w))) : NULL;
+    json_free(&w);
+    return text;
+}
+
+/* Extensions that materials and textures use, which a written file must
+ * declare again; geometry ones (compression, quantization) are not kept. */
+static int material_extension(const char *name)
+{
+    return !strncmp(name, "KHR_materials_", 14) || !strncmp(name, "KHR_texture_", 12) ||
+           !strncmp(name, "EXT_texture_", 12) || !strncmp(name, "MSFT_texture_", 13);
+}
+
+/* "textures", "samplers", "images" and the material extensionsUsed, as one
+ * JSON object text; NULL (nothing kept) when there are none or one cannot be
+ * written back. */
+static char *texture_text(const gltf_file *g)
+{
+    static const char *keys[] = {"textures", "samplers", "images"};
+    json_writer w;
+    json_init(&w);
+    json_begin_object(&w);
+    int any = 0, ok = 1;
+    for (int k = 0; k < 3 && ok; k++) {
+        const json_value *v = json_get(&g->root, keys[k]);
+        if (!v || v->type != JSON_ARRAY) continue;
+        json_key(&w, keys[k]);
+        if (k == 2) {
+            json_begin_array(&w);
+            for (int i = 0; ok && i < v->n; i++)
+                ok = json_get(&v->items[i], "bufferView") ? put_image(g, &w, &v->items[i]) : put_json(&w, &v->items[i], 1);
+            json_end_array(&w);
+        } else {
+            ok = put_json(&w, v, 1);
+        }
+        any = 1;
+    }
+    const json_value *used = json_get(&g->root, "extensionsUsed");
+    int nused = 0;
+    for (int i = 0; used && used->type == JSON_ARRAY && i < used->n; i++)
+        if (used->items[i].type == JSON_STRING && material_extension(used->items[i].string)) {
+            if (!nused++) { json_key(&w, "extensionsUsed"); json_begin_array(&w); }
+            json_string(&w, used->items[i].string);
+        }
+    if (nused) { json_end_array(&w); any = 1; }
+    json_end_object(&w);
+    char *text = ok && any && !w.failed ? attr_strndup(json_text(&w), strlen(json_text(&w))) : NULL;
+    if (!ok) log_message(NEUV_LOG_WARN, "glTF: the textures or images cannot be kept; they are not written back");
+    json_free(&w);
+    return text;
+}
+
+/* Fills the builder's attributes: materials (names, the array, what it
+ * refers to), colours, the node's name. Before finish. */
+static neuv_status keep_attributes(gltf_file *g, mesh_builder *b, int *n_file_materials)
+{
+    *n_file_materials = 0;
+    const json_value *mats = json_get(&g->root, "materials");
+    int colors = g->prims_with_color > 0 && g->prims_without_color == 0 && g->color;
+    if (!(mats && mats->type == JSON_ARRAY && mats->n > 0) && !colors && !g->node_name) return NEUV_OK;
+    mesh_attributes *a = mesh_builder_attributes(b);
+    if (!a) return error_nomem("the glTF attributes");
+    if (g->node_name && !(a->node_name = attr_strndup(g->node_name, strlen(g->node_name))))
+        return error_nomem("the node's name");
+    if (colors) {
+        int ch = g->color4 ? 4 : 3;
+        a->color = mem_alloc(sizeof(float) * (size_t)ch * (size_t)(b->nv > 0 ? b->nv : 1));
+        if (!a->color) return error_nomem("vertex colours");
+        for (size_t v = 0; v < (size_t)b->nv; v++)
+            for (int k = 0; k < ch; k++) a->color[(size_t)ch * v + (size_t)k] = g->color[4 * v + (size_t)k];
+        a->color_channels = ch;
+    }
+    if (!(mats && mats->type == JSON_ARRAY && mats->n > 0)) return NEUV_OK;
+    if (!(a->gltf_materials = json_text_of(mats))) {
+        log_message(NEUV_LOG_WARN, "glTF: the materials are nested too deep to be kept; they are not written back");
+        return NEUV_OK;
+    }
+    a->gltf_textures = texture_text(g);
+    int any_material = 0;
+    for (int f = 0; f < b->nf && !any_material; f++) any_material = b->face_material[f] >= 0;
+    if (!any_material) return NEUV_OK;
+    a->material_name = mem_calloc((size_t)mats->n, sizeof(char *));
+    if (!a->material_name) return error_nomem("material names");
+    a->n_materials = mats->n;
+    for (int i = 0; i < mats->n; i++) {
+        const json_value *name = json_get(&mats->items[i], "name");
+        if (name && name->type == JSON_STRING && !(a->material_name[i] = attr_strndup(name->string, strlen(name->string))))
+            return error_nomem("material names");
+    }
+    *n_file_materials = mats->n;
+    return NEUV_OK;
+}
+
+/* After finish: the file's material index of each face_material value
+ * (finish put an unnamed material first when some primitive has none). */
+static neuv_status map_materials(neuv_mesh *m, int n_file_materials)
+{
+    mesh_attributes *a = m->attr;
+    if (!a || !m->face_material || n_file_materials == 0 || a->n_materials == 0) return NEUV_OK;
+    int shift = a->n_materials - n_file_materials;
+    a->gltf_material = mem_alloc(sizeof(int) * (size_t)a->n_materials);
+    if (!a->gltf_material) return error_nomem("material indices");
+    for (int i = 0; i < a->n_materials; i++) a->gltf_material[i] = i - shift;
+    return NEUV_OK;
 }
 
 /* ---- the file -------------------------------------------------------- */
@@ -533,10 +754,15 @@ neuv_status io_read_gltf(const char *data, size_t len, const char *dir, neuv_mes
     }
     if (!s) s = add_scene(&g);
     if (!s && b.nf == 0) s = error_set(NEUV_ERR_INPUT, "glTF: no triangles in the default scene");
+    int n_file_materials = 0;
+    if (!s) s = keep_attributes(&g, &b, &n_file_materials);
     for (int i = 0; i < g.nbuffers; i++) mem_free(g.buffers[i].owned);
     mem_free(g.buffers);
+    mem_free(g.color);
     json_value_free(&g.root);
     if (s) { mesh_builder_free(&b); return s; }
     mesh_builder_style style = {0, 0};
-    return mesh_builder_finish(&b, style, out);
+    s = mesh_builder_finish(&b, style, out);
+    if (s == NEUV_OK && (s = map_materials(*out, n_file_materials)) != NEUV_OK) { mesh_free(*out); *out = NULL; }
+    return s;
 }

@@ -26,7 +26,8 @@ neuv_status io_read_all(FILE *fp, char **data, size_t *len);
 neuv_status io_read_obj(const char *text, size_t len, neuv_mesh **out);
 /* OFF and its COFF/NOFF/STOFF variants, with # comments. */
 neuv_status io_read_off(const char *text, size_t len, neuv_mesh **out);
-/* PLY: ascii, binary_little_endian, binary_big_endian; vertex normals nx, ny, nz. */
+/* PLY: ascii, binary_little_endian, binary_big_endian; vertex normals nx, ny,
+ * nz; colours and other properties kept in the attributes (docs/formats.md). */
 neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out);
 /* glTF 2.0, as .gltf (JSON) or .glb (binary), with neuv's own reader
  * (gltf_read.c says what it reads and refuses). `dir`: the folder that
@@ -40,10 +41,14 @@ int io_assimp_supports(const char *ext);
 
 /* OBJ with v (exact decimal), vt and f v/vt (1-based); f v without UVs. */
 neuv_status io_write_obj(const neuv_mesh *m, FILE *fp);
-/* Binary little-endian PLY: double x,y,z, float s,t; seam vertices split. */
+/* Binary little-endian PLY: double x,y,z, float UVs (two pairs when
+ * attr->nuv0 > 0), normals, colours, polygons and kept properties; vertices
+ * split where corners differ (ply_write.c, docs/formats.md). */
 neuv_status io_write_ply(const neuv_mesh *m, FILE *fp);
 /* glTF 2.0: binary .glb (binary = 1) or .gltf with the buffer embedded as a
- * base64 data URI (binary = 0); seam vertices split. */
+ * base64 data URI (binary = 0); a primitive per material, NORMAL, COLOR_0,
+ * TEXCOORD_0 (and TEXCOORD_1 = the atlas when attr->nuv0 > 0), the kept
+ * materials and node name; vertices split where corners differ (gltf_write.c). */
 neuv_status io_write_gltf(const neuv_mesh *m, FILE *fp, int binary);
 
 #endif

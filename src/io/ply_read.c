@@ -3,8 +3,17 @@
  * Positions of any scalar type are read into float64; optional per-vertex
  * UVs (s,t / u,v / texture_u,texture_v) or a per-face `texcoord` list (two
  * numbers per corner, which wins over per-vertex UVs); faces from a
- * `vertex_indices` (or `vertex_index`) list of any count and index type.
- * Every other property or element is skipped by its declared type. */
+ * `vertex_indices` (or `vertex_index`) list of any count and index type;
+ * vertex normals nx, ny, nz (per corner in the mesh).
+ * Kept in the mesh's attributes to be written back (io/ply_write.c): vertex
+ * colours red, green, blue[, alpha] (any type; integers scaled to [0,1] by
+ * their type's largest value, the type kept in color_type), the names of the
+ * UV pair, and every other scalar property of the vertex and face elements
+ * with its name and type (ply_vertex, ply_face; face values per polygon,
+ * which the mesh records). A file written by neuv with two UV pairs reads
+ * its first pair as the UVs; the second (s1 t1) is kept as two other
+ * properties. List properties other than vertex_indices and texcoord, and
+ * elements other than vertex and face, are skipped by their declared type. */
 #include <limits.h>
 #include <math.h>
 #include <stdint.h>
@@ -16,6 +25,7 @@
 #include "io/mesh_builder.h"
 #include "io/mesh_io.h"
 #include "io/text_scan.h"
+#include "mesh/mesh_attributes.h"
 
 typedef enum ply_type { T_NONE, T_I8, T_U8, T_I16, T_U16, T_I32, T_U32, T_F32, T_F64 } ply_type;
 
@@ -45,11 +55,12 @@ static size_t type_size(ply_type t)
 }
 
 typedef enum ply_role { R_NONE, R_X, R_Y, R_Z, R_U, R_V, R_FACE_VERTICES, R_FACE_TEXCOORD, R_NX, R_NY, R_NZ,
-                        R_COUNT } ply_role;
+                        R_RED, R_GREEN, R_BLUE, R_ALPHA, R_COUNT } ply_role;
 
 typedef struct ply_prop {
     ply_type type, count_type; /* count_type != T_NONE for a list */
     ply_role role;
+    char *name;
 } ply_prop;
 
 typedef enum ply_kind { K_OTHER, K_VERTEX, K_FACE } ply_kind;
@@ -116,7 +127,10 @@ typedef struct ply_header {
 
 static void header_free(ply_header *h)
 {
-    for (int i = 0; i < h->nelems; i++) mem_free(h->elems[i].props);
+    for (int i = 0; i < h->nelems; i++) {
+        for (int k = 0; k < h->elems[i].nprops; k++) mem_free(h->elems[i].props[k].name);
+        mem_free(h->elems[i].props);
+    }
     mem_free(h->elems);
     memset(h, 0, sizeof *h);
 }
@@ -134,6 +148,10 @@ static ply_role role_of(ply_kind kind, const char *name, int is_list)
         if (!strcmp(name, "nx")) return R_NX;
         if (!strcmp(name, "ny")) return R_NY;
         if (!strcmp(name, "nz")) return R_NZ;
+        if (!strcmp(name, "red")) return R_RED;
+        if (!strcmp(name, "green")) return R_GREEN;
+        if (!strcmp(name, "blue")) return R_BLUE;
+        if (!strcmp(name, "alpha")) return R_ALPHA;
     }
     if (kind == K_FACE && is_list) {
         if (!strcmp(name, "vertex_indices") || !strcmp(name, "vertex_index")) return R_FACE_VERTICES;
@@ -204,7 +222,7 @@ static neuv_status parse_header(const char *data, size_t len, ply_header *h)
         } else if (!strcmp(w[0], "property")) {
             if (h->nelems == 0) return error_set(NEUV_ERR_INPUT, "line %d: PLY property before any element", line_no);
             ply_element *e = &h->elems[h->nelems - 1];
-            ply_prop pr = {T_NONE, T_NONE, R_NONE};
+            ply_prop pr = {T_NONE, T_NONE, R_NONE, NULL};
             const char *name;
             if (nw >= 5 && !strcmp(w[1], "list")) {
                 pr.count_type = type_of(w[2]);
@@ -222,6 +240,8 @@ static neuv_status parse_header(const char *data, size_t len, ply_header *h)
             pr.role = role_of(e->kind, name, pr.count_type != T_NONE);
             ply_prop *ps = mem_realloc(e->props, sizeof *ps * (size_t)(e->nprops + 1));
             if (!ps) return error_nomem("the PLY header");
+            pr.name = attr_strndup(name, strlen(name));
+            if (!pr.name) { e->props = ps; return error_nomem("the PLY header"); }
             e->props = ps;
             e->props[e->nprops++] = pr;
         } else {
@@ -272,6 +292,88 @@ static int scratch_fit(face_scratch *fs, size_t n)
     return 1;
 }
 
+/* What the reader keeps beyond the surface while it reads. */
+typedef struct ply_keep {
+    ply_extra vertex, face; /* the other scalar properties */
+    size_t cap_vertex, cap_face;
+    float *color;           /* #V by 4 */
+    size_t cap_color;
+    int color_channels, color_type;
+    const char *uv_name[2];
+} ply_keep;
+
+/* Sets up the other scalar properties of element e. */
+static neuv_status extra_setup(ply_extra *x, const ply_element *e)
+{
+    for (int k = 0; k < e->nprops; k++) x->count += e->props[k].role == R_NONE && e->props[k].count_type == T_NONE;
+    if (x->count == 0) return NEUV_OK;
+    x->name = mem_calloc((size_t)x->count, sizeof(char *));
+    x->type = mem_alloc(sizeof(int) * (size_t)x->count);
+    if (!x->name || !x->type) return error_nomem("PLY properties");
+    int j = 0;
+    for (int k = 0; k < e->nprops; k++) {
+        const ply_prop *pr = &e->props[k];
+        if (pr->role != R_NONE || pr->count_type != T_NONE) continue;
+        x->type[j] = (int)pr->type; /* ply_scalar_type has ply_type's order */
+        if (!(x->name[j++] = attr_strndup(pr->name, strlen(pr->name)))) return error_nomem("PLY properties");
+    }
+    return NEUV_OK;
+}
+
+/* Room for element i's values (grown as the data is read, so that a header
+ * claiming billions costs nothing until they come); NULL when memory runs
+ * out. */
+static double *extra_row(ply_extra *x, size_t *cap, long long i)
+{
+    size_t need = ((size_t)i + 1) * (size_t)x->count;
+    if (need > *cap) {
+        size_t c = need > 2 * *cap ? need : 2 * *cap;
+        if (c < 64) c = 64;
+        double *v = mem_realloc(x->value, c * sizeof(double));
+        if (!v) return NULL;
+        x->value = v;
+        *cap = c;
+    }
+    x->elements = (int)i + 1;
+    return x->value + (size_t)i * (size_t)x->count;
+}
+
+/* The largest value of an integer type (colours are scaled by it), 1 for floats. */
+static double type_scale(ply_type t)
+{
+    switch (t) {
+    case T_I8: return 127;
+    case T_U8: return 255;
+    case T_I16: return 32767;
+    case T_U16: return 65535;
+    case T_I32: return 2147483647.0;
+    case T_U32: return 4294967295.0;
+    default: return 1;
+    }
+}
+
+/* Hands what was kept to the builder's attributes. */
+static neuv_status keep_attributes(ply_keep *k, mesh_builder *b)
+{
+    if (k->vertex.count == 0 && k->face.count == 0 && !k->color_channels && !k->uv_name[0]) return NEUV_OK;
+    mesh_attributes *a = mesh_builder_attributes(b);
+    if (!a) return error_nomem("the PLY attributes");
+    if (k->vertex.count > 0 && k->vertex.elements == b->nv) { a->ply_vertex = k->vertex; memset(&k->vertex, 0, sizeof k->vertex); }
+    if (k->face.count > 0 && k->face.elements == b->np) { a->ply_face = k->face; memset(&k->face, 0, sizeof k->face); }
+    if (k->color_channels && b->nv > 0) {
+        int ch = k->color_channels;
+        a->color = mem_alloc(sizeof(float) * (size_t)ch * (size_t)b->nv);
+        if (!a->color) return error_nomem("vertex colours");
+        for (size_t v = 0; v < (size_t)b->nv; v++)
+            for (int c = 0; c < ch; c++) a->color[(size_t)ch * v + (size_t)c] = k->color[4 * v + (size_t)c];
+        a->color_channels = ch;
+        a->color_type = k->color_type;
+    }
+    for (int c = 0; c < 2 && k->uv_name[0] && k->uv_name[1]; c++)
+        if (!(a->ply_uv_name[c] = attr_strndup(k->uv_name[c], strlen(k->uv_name[c])))) return error_nomem("UV names");
+    return NEUV_OK;
+}
+
 /* The most corners a face may claim: far above any real polygon, low enough
  * that a corrupt count cannot ask for gigabytes. */
 #define MAX_CORNERS 1000000
@@ -292,6 +394,8 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
     int vertex_normal = 0;  /* ... normal properties (nx, ny, nz) */
     long long nverts = 0;   /* vertices declared */
     int face_texcoord = 0;  /* the face element has a texcoord list */
+    ply_keep keep;
+    memset(&keep, 0, sizeof keep);
     for (int ei = 0; ei < h.nelems && s == NEUV_OK; ei++) {
         const ply_element *e = &h.elems[ei];
         if (e->kind == K_VERTEX) {
@@ -303,6 +407,16 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
             }
             vertex_uv = have[R_U] && have[R_V];
             vertex_normal = have[R_NX] && have[R_NY] && have[R_NZ];
+            if (have[R_RED] && have[R_GREEN] && have[R_BLUE]) keep.color_channels = have[R_ALPHA] ? 4 : 3;
+            for (int k = 0; k < e->nprops; k++) {
+                const ply_prop *pr = &e->props[k];
+                if (pr->role == R_RED) keep.color_type = (int)pr->type;
+                if (pr->role == R_U && !keep.uv_name[0]) keep.uv_name[0] = pr->name;
+                if (pr->role == R_V && !keep.uv_name[1]) keep.uv_name[1] = pr->name;
+            }
+            if (!vertex_uv) keep.uv_name[0] = keep.uv_name[1] = NULL;
+            s = extra_setup(&keep.vertex, e);
+            if (s != NEUV_OK) break;
             nverts = e->count;
             long long room = h.format == F_ASCII ? (long long)(len / 6) + 16 : (long long)(len / 12) + 16;
             s = mesh_builder_reserve(&b, e->count < room ? e->count : room, 0);
@@ -314,15 +428,20 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
                 face_texcoord |= e->props[k].role == R_FACE_TEXCOORD;
             }
             if (!have_v) { s = error_set(NEUV_ERR_INPUT, "the PLY face element has no vertex_indices list"); break; }
+            if ((s = extra_setup(&keep.face, e)) != NEUV_OK) break;
             /* Per-corner texcoords replace per-vertex UVs read before. */
             if (face_texcoord) b.nuv = 0;
             long long room = (long long)(len / 8) + 16;
             s = mesh_builder_reserve(&b, 0, e->count < room ? e->count : room);
         }
         if (s != NEUV_OK || e->nprops == 0) continue;
+        ply_extra *xe = e->kind == K_VERTEX ? &keep.vertex : e->kind == K_FACE ? &keep.face : NULL;
+        size_t *xcap = e->kind == K_VERTEX ? &keep.cap_vertex : &keep.cap_face;
         for (long long i = 0; i < e->count && s == NEUV_OK; i++) {
             double x[R_COUNT] = {0};
-            int nc = 0, ntc = -1;
+            int nc = 0, ntc = -1, xi = 0;
+            double *row = NULL;
+            if (xe && xe->count > 0 && !(row = extra_row(xe, xcap, i))) { s = error_nomem("PLY properties"); break; }
             for (int k = 0; k < e->nprops && s == NEUV_OK; k++) {
                 const ply_prop *pr = &e->props[k];
                 double val;
@@ -330,6 +449,7 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
                 if (pr->count_type == T_NONE) {
                     if ((got = read_value(&r, pr->type, &val)) <= 0) { s = data_error(&r, got, e, i); break; }
                     if (pr->role != R_NONE) x[pr->role] = val;
+                    else if (row) row[xi++] = val;
                     continue;
                 }
                 double cnt;
@@ -370,6 +490,22 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
                 s = mesh_builder_add_vertex(&b, x[R_X], x[R_Y], x[R_Z]);
                 if (s == NEUV_OK && vertex_uv) s = mesh_builder_add_uv(&b, x[R_U], x[R_V]);
                 if (s == NEUV_OK && vertex_normal) s = mesh_builder_add_normal(&b, x[R_NX], x[R_NY], x[R_NZ]);
+                if (s == NEUV_OK && keep.color_channels) {
+                    size_t need = 4 * (size_t)b.nv;
+                    if (need > keep.cap_color) {
+                        size_t c = need > 2 * keep.cap_color ? need : 2 * keep.cap_color;
+                        float *col = mem_realloc(keep.color, c * sizeof(float));
+                        if (!col) { s = error_nomem("vertex colours"); break; }
+                        keep.color = col;
+                        keep.cap_color = c;
+                    }
+                    double sc = type_scale((ply_type)keep.color_type);
+                    float *col = keep.color + 4 * ((size_t)b.nv - 1);
+                    col[0] = (float)(x[R_RED] / sc);
+                    col[1] = (float)(x[R_GREEN] / sc);
+                    col[2] = (float)(x[R_BLUE] / sc);
+                    col[3] = (float)(x[R_ALPHA] / sc);
+                }
             } else if (e->kind == K_FACE) {
                 if (nc < 3) {
                     s = error_set(NEUV_ERR_INPUT, "face %lld has %d corners; a face needs at least 3", i, nc);
@@ -390,9 +526,13 @@ neuv_status io_read_ply(const char *data, size_t len, neuv_mesh **out)
             }
         }
     }
+    if (s == NEUV_OK) s = keep_attributes(&keep, &b);
     mem_free(fs.v);
     mem_free(fs.uv);
     mem_free(fs.tc);
+    ply_extra_free(&keep.vertex);
+    ply_extra_free(&keep.face);
+    mem_free(keep.color);
     header_free(&h);
     if (s != NEUV_OK) { mesh_builder_free(&b); return s; }
     mesh_builder_style style = {0, 0};

@@ -69,6 +69,8 @@ mesh_attributes *mesh_attributes_clone(const mesh_attributes *a, int nv, int nf)
     }
     c->material_library = copy_string(a->material_library, &failed);
     c->gltf_materials = copy_string(a->gltf_materials, &failed);
+    if (c->material_name) c->gltf_material = copy_block(a->gltf_material, sizeof(int) * (size_t)a->n_materials, &failed);
+    c->gltf_textures = copy_string(a->gltf_textures, &failed);
     if (a->n_groups > 0) {
         c->groups = mem_calloc((size_t)a->n_groups, sizeof *c->groups);
         if (!c->groups) failed = 1;
@@ -86,6 +88,7 @@ mesh_attributes *mesh_attributes_clone(const mesh_attributes *a, int nv, int nf)
     c->node_name = copy_string(a->node_name, &failed);
     copy_ply_extra(&c->ply_vertex, &a->ply_vertex, &failed);
     copy_ply_extra(&c->ply_face, &a->ply_face, &failed);
+    for (int k = 0; k < 2; k++) c->ply_uv_name[k] = copy_string(a->ply_uv_name[k], &failed);
     c->nuv0 = a->nuv0;
     c->uv0 = copy_block(a->uv0, sizeof(double) * 2 * (size_t)a->nuv0, &failed);
     c->tri_uv0 = copy_block(a->tri_uv0, sizeof(int) * 3 * (size_t)nf, &failed);
@@ -100,6 +103,8 @@ void mesh_attributes_free(mesh_attributes *a)
     mem_free(a->material_name);
     mem_free(a->material_library);
     mem_free(a->gltf_materials);
+    mem_free(a->gltf_material);
+    mem_free(a->gltf_textures);
     for (int i = 0; a->groups && i < a->n_groups; i++) {
         mem_free(a->groups[i].object);
         mem_free(a->groups[i].group);
@@ -111,6 +116,7 @@ void mesh_attributes_free(mesh_attributes *a)
     mem_free(a->node_name);
     ply_extra_free(&a->ply_vertex);
     ply_extra_free(&a->ply_face);
+    for (int k = 0; k < 2; k++) mem_free(a->ply_uv_name[k]);
     mem_free(a->uv0);
     mem_free(a->tri_uv0);
     mem_free(a);

@@ -34,6 +34,11 @@ typedef struct mesh_attributes {
     char **material_name;      /* n_materials: by face_material index; NULL: unnamed */
     char *material_library;    /* OBJ `mtllib` argument(s), NULL when none */
     char *gltf_materials;      /* glTF: the file's materials array as JSON text, NULL when none */
+    int *gltf_material;        /* n_materials: the glTF file's material index of each face_material
+                                * value (-1: none, or one the file does not have); NULL when not glTF */
+    char *gltf_textures;       /* glTF: a JSON object text with what the materials refer to (the file's
+                                * "textures", "samplers", "images" (embedded ones as data URIs) and
+                                * their "extensionsUsed"), NULL when none */
     int n_groups;
     obj_group_state *groups;   /* n_groups */
     int *face_group;           /* #F into groups, or NULL */
@@ -42,6 +47,7 @@ typedef struct mesh_attributes {
     int color_type;            /* PLY type the colours were read as (PLY_U8 or PLY_F32), 0 otherwise */
     char *node_name;           /* glTF node's name, NULL when none */
     ply_extra ply_vertex, ply_face;
+    char *ply_uv_name[2];      /* the PLY file's names of its UV pair ("s", "t"), NULL when none */
     int nuv0;                  /* UVs to write as the first set, the atlas's second (0: none) */
     double *uv0;               /* nuv0 by 2 */
     int *tri_uv0;              /* #F by 3 */
