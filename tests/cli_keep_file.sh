@@ -9,8 +9,9 @@
 #  - a quad torus unwrapped by the networks: no quad is split between
 #    charts (the report's polygons.split is 0, every face of the output a
 #    quad), with the chart borders that PatchNet drew moved onto quad edges;
-#  - --uv-channel 1 is refused for OBJ output (one UV set) and for a file
-#    without UVs, with exit 2.
+#  - --uv-channel 1 keeps a PLY's and a GLB's UVs bit for bit as the first
+#    set with the atlas as the second; it is refused for OBJ output (one UV
+#    set) and for a file without UVs, with exit 2.
 # Usage: bash tests/cli_keep_file.sh /path/to/neuv
 set -u
 NEUV=${1:?usage: cli_keep_file.sh /path/to/neuv}
@@ -180,7 +181,142 @@ PYEOF
 [ "$out" = ok ] && ok || bad "torus.obj quads: $out"
 fi
 
-# 3. --uv-channel 1 where it cannot be honoured: exit 2, one line.
+# 3. --uv-channel 1 keeps the first UV set bit for bit: a PLY written here
+# (ASCII, float s t) and a GLB that neuv wrote (TEXCOORD_0), each
+# unwrapped again with the atlas as the second set.
+cat > "$TMP/uvsets.py" <<'PYEOF'
+import json, struct, sys
+
+def ply_corners(path):
+    """Per face corner: {property: value} of its vertex (binary little endian or ASCII)."""
+    data = open(path, "rb").read()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode().splitlines()
+    fmt = header[1].split()[1]
+    elements, cur = [], None
+    for line in header:
+        w = line.split()
+        if w[0] == "element":
+            cur = [w[1], int(w[2]), []]
+            elements.append(cur)
+        elif w[0] == "property":
+            cur[2].append(w[1:])
+    codes = {"float": "f", "double": "d", "uchar": "B", "int": "i", "uint": "I", "char": "b", "short": "h",
+             "ushort": "H", "float32": "f", "float64": "d", "uint8": "B", "int32": "i", "uint32": "I"}
+    pos, out = end, {}
+    text = data[end:].decode().split() if fmt == "ascii" else None
+    ti = 0
+    for name, count, props in elements:
+        rows = []
+        for _ in range(count):
+            row = {}
+            for p in props:
+                if p[0] == "list":
+                    if text is not None:
+                        n = int(text[ti]); ti += 1
+                        row[p[3]] = [int(x) for x in text[ti:ti + n]]; ti += n
+                    else:
+                        n = struct.unpack_from("<" + codes[p[1]], data, pos)[0]; pos += struct.calcsize(codes[p[1]])
+                        c = codes[p[2]]
+                        row[p[3]] = list(struct.unpack_from("<%d%s" % (n, c), data, pos)); pos += n * struct.calcsize(c)
+                else:
+                    c = codes[p[0]]
+                    if text is not None:
+                        v = float(text[ti]); ti += 1
+                        row[p[1]] = struct.unpack("<f", struct.pack("<f", v))[0] if c == "f" else v
+                    else:
+                        row[p[1]] = struct.unpack_from("<" + c, data, pos)[0]; pos += struct.calcsize(c)
+            rows.append(row)
+        out[name] = rows
+    return [[out["vertex"][v] for v in f["vertex_indices"]] for f in out["face"]]
+
+def glb_corners(path):
+    """Per triangle corner: (position, TEXCOORD_0, TEXCOORD_1 or None), over the primitives in order."""
+    data = open(path, "rb").read()
+    jlen = struct.unpack_from("<I", data, 12)[0]
+    doc = json.loads(data[20:20 + jlen])
+    binary = data[20 + jlen + 8:]
+    def read(acc_index):
+        acc = doc["accessors"][acc_index]
+        view = doc["bufferViews"][acc["bufferView"]]
+        n = {"SCALAR": 1, "VEC2": 2, "VEC3": 3}[acc["type"]]
+        c = {5126: "f", 5125: "I", 5123: "H"}[acc["componentType"]]
+        off = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
+        vals = struct.unpack_from("<%d%s" % (acc["count"] * n, c), binary, off)
+        return [vals[i * n:(i + 1) * n] for i in range(acc["count"])]
+    corners = []
+    for prim in doc["meshes"][0]["primitives"]:
+        a = prim["attributes"]
+        p, t0 = read(a["POSITION"]), read(a["TEXCOORD_0"])
+        t1 = read(a["TEXCOORD_1"]) if "TEXCOORD_1" in a else None
+        for (i,) in read(prim["indices"]):
+            corners.append((p[i], t0[i], t1[i] if t1 else None))
+    return corners
+PYEOF
+"$PY" - "$TMP" <<'PYEOF'
+import sys
+tmp = sys.argv[1]
+# A 6 x 3 grid of quads with its own UVs (a 0.1-step lattice squeezed into a corner).
+n, m = 6, 3
+lines = ["ply", "format ascii 1.0", "element vertex %d" % ((n + 1) * (m + 1)),
+         "property float x", "property float y", "property float z", "property float s", "property float t",
+         "element face %d" % (n * m), "property list uchar int vertex_indices", "end_header"]
+for j in range(m + 1):
+    for i in range(n + 1):
+        lines.append("%g %g %g %.7g %.7g" % (i, j, 0.1 * ((i * j) % 3), 0.013 * i + 0.1, 0.021 * j + 0.2))
+for j in range(m):
+    for i in range(n):
+        a = j * (n + 1) + i
+        lines.append("4 %d %d %d %d" % (a, a + 1, a + n + 2, a + n + 1))
+open(f"{tmp}/uv.ply", "w").write("\n".join(lines) + "\n")
+PYEOF
+if "$NEUV" unwrap "$TMP/uv.ply" -o "$TMP/uv2.ply" --uv-channel 1 --method lscm --quiet 2>"$TMP/uv2.err"; then
+    out=$("$PY" - "$TMP" <<'PYEOF'
+import sys
+sys.path.insert(0, sys.argv[1])
+import uvsets
+tmp = sys.argv[1]
+a, b = uvsets.ply_corners(f"{tmp}/uv.ply"), uvsets.ply_corners(f"{tmp}/uv2.ply")
+problems = []
+if [len(f) for f in a] != [len(f) for f in b]:
+    problems.append("faces differ")
+first = [(c["s"], c["t"]) for f in a for c in f]
+kept = [(c.get("s"), c.get("t")) for f in b for c in f]
+atlas = [(c.get("s1"), c.get("t1")) for f in b for c in f]
+if first != kept:
+    problems.append("the first UV pair changed")
+if any(u is None or not (0 <= u <= 1 and 0 <= v <= 1) for u, v in atlas) or atlas == kept:
+    problems.append("no atlas as the second pair")
+print("; ".join(problems) if problems else "ok")
+PYEOF
+)
+    [ "$out" = ok ] && ok || bad "uv.ply --uv-channel 1: $out"
+else bad "unwrap uv.ply --uv-channel 1: $(cat "$TMP/uv2.err")"; fi
+if "$NEUV" unwrap "$TMP/parts.obj" -o "$TMP/parts.glb" --method lscm --quiet 2>"$TMP/glb.err" &&
+   "$NEUV" unwrap "$TMP/parts.glb" -o "$TMP/parts2.glb" --uv-channel 1 --method lscm --seed 3 --quiet 2>"$TMP/glb.err"; then
+    out=$("$PY" - "$TMP" <<'PYEOF'
+import sys
+sys.path.insert(0, sys.argv[1])
+import uvsets
+tmp = sys.argv[1]
+a, b = uvsets.glb_corners(f"{tmp}/parts.glb"), uvsets.glb_corners(f"{tmp}/parts2.glb")
+problems = []
+# The primitives (one per material) come in the same order, so corners match one to one.
+if [c[0] for c in a] != [c[0] for c in b]:
+    problems.append("positions per corner differ")
+if [c[1] for c in a] != [c[1] for c in b]:
+    problems.append("TEXCOORD_0 changed")
+if any(c[2] is None for c in b) or any(not (0 <= x <= 1) for c in b for x in c[2]):
+    problems.append("no atlas as TEXCOORD_1")
+elif all(tuple(c[1]) == tuple(c[2]) for c in b):
+    problems.append("TEXCOORD_1 equals TEXCOORD_0: the check could not tell a kept first set from the atlas")
+print("; ".join(problems) if problems else "ok")
+PYEOF
+)
+    [ "$out" = ok ] && ok || bad "parts.glb --uv-channel 1: $out"
+else bad "glb round: $(cat "$TMP/glb.err")"; fi
+
+# 4. --uv-channel 1 where it cannot be honoured: exit 2, one line.
 for args in "$TMP/parts-uv.obj -o $TMP/x.obj --uv-channel 1" "$TMP/parts.obj -o $TMP/x.ply --uv-channel 1" \
             "$TMP/parts.obj -o $TMP/x.ply --uv-channel 2"; do
     # shellcheck disable=SC2086
