@@ -3,7 +3,8 @@
     import neuv
     vmapping, indices, uvs = neuv.unwrap(V, F, method="lscm")
 
-unwrap gives xatlas.parametrize's three arrays; Atlas runs the stages one by
+unwrap gives xatlas.parametrize's three arrays; unwrap_file unwraps a
+file and writes it back with what it carries (as `neuv unwrap`); Atlas runs the stages one by
 one (and several meshes in one atlas); Model, train_category, pack and
 evaluate cover saved models, category models and existing UV maps. Options
 are the CLI's flags in snake_case. Failures of the library raise
@@ -15,7 +16,8 @@ $NEUV_LIBRARY, then in the repository's build folder (neuv.library_path).
 """
 from ._capi import lib as _lib, library_path
 from ._errors import Cancelled, Error
-from ._api import Atlas, Model, evaluate, pack, train_category, unwrap
+from ._api import Atlas, Model, evaluate, pack, train_category, unwrap, unwrap_file
 
 __version__ = _lib.neuv_version().decode()
-__all__ = ["Atlas", "Cancelled", "Error", "Model", "evaluate", "library_path", "pack", "train_category", "unwrap"]
+__all__ = ["Atlas", "Cancelled", "Error", "Model", "evaluate", "library_path", "pack", "train_category", "unwrap",
+           "unwrap_file"]

@@ -280,6 +280,40 @@ def unwrap(V, F, *, model=None, return_report=False, progress=None, **options):
         return vmapping, indices, uvs
 
 
+def unwrap_file(path, output, *, uv_channel=0, model=None, progress=None, **options):
+    """Unwraps a mesh file and writes it back with the atlas, as `neuv
+    unwrap PATH -o OUTPUT` does: the mesh as read (vertices, polygons,
+    normals, materials, groups, colours, other properties) with the atlas
+    as its UVs (docs/formats.md). uv_channel 0: the atlas replaces the
+    file's UVs; 1: the file's UVs stay the first set and the atlas is the
+    second (PLY, glTF; refused for OBJ and for a file without UVs). Options
+    and model as for unwrap. Returns the report dict."""
+    if uv_channel not in (0, 1):
+        raise ValueError("uv_channel must be 0 (the atlas replaces the UVs) or 1 (a second UV set)")
+    if model is None:
+        o = _options.unwrap(options, "neuv.unwrap_file")
+    else:
+        _options.apply(options, "neuv.unwrap_file (with a model)")
+    mesh = ctypes.c_void_p()
+    check(lib.neuv_mesh_load(_path(path), None, byref(mesh)), path)
+    try:
+        with Atlas(progress=progress) as atlas:
+            atlas._call(lib.neuv_atlas_add_loaded_mesh, mesh)
+            if model is None:
+                atlas._call(lib.neuv_atlas_generate, byref(o))
+            else:
+                atlas.apply_model(model, **options)
+            out = ctypes.c_void_p()
+            atlas._call(lib.neuv_atlas_output_mesh, 0, mesh, int(uv_channel), byref(out))
+            try:
+                check(lib.neuv_mesh_save(out, _path(output)), output)
+            finally:
+                lib.neuv_mesh_free(out)
+            return atlas.report
+    finally:
+        lib.neuv_mesh_free(mesh)
+
+
 def train_category(shapes, *, return_report=False, progress=None, **options):
     """Trains a category model on several shapes [(V, F), ...] (neural
     method). Options: preset, charts, max_distortion, iters, patch_iters,

@@ -205,3 +205,34 @@ def test_seam_edges_are_never_crossed(mesh):
         assert out[0][a] != out[1][a] or out[0][b] != out[1][b]  # a different UV on each side
     with pytest.raises(TypeError):
         neuv.unwrap(V, F, seam_edges=[1, 2, 3], **QUICK)
+
+
+def test_unwrap_file_keeps_what_the_file_carries(tmp_path):
+    # A strip of 6 quads in two materials with UVs of its own, as OBJ and PLY.
+    obj = ["mtllib strip.mtl"]
+    obj += [f"v {i} {j} {0.1 * (i % 3)}" for i in range(7) for j in (0, 1)]
+    obj += [f"vt {0.1 * i:.6g} {0.5 * j:.6g}" for i in range(7) for j in (0, 1)]
+    quads = [(2 * i + 1, 2 * i + 3, 2 * i + 4, 2 * i + 2) for i in range(6)]
+    for i, q in enumerate(quads):
+        if i % 3 == 0:
+            obj.append(f"usemtl m{i // 3}")
+        obj.append("f " + " ".join(f"{v}/{v}" for v in q))
+    (tmp_path / "strip.obj").write_text("\n".join(obj) + "\n")
+    report = neuv.unwrap_file(tmp_path / "strip.obj", tmp_path / "out.obj", method="lscm", use_cache=False)
+    assert report["polygons"] == {"input": 6, "split": 0}
+    lines = (tmp_path / "out.obj").read_text().splitlines()
+    faces = [ln.split()[1:] for ln in lines if ln.startswith("f ")]
+    assert [len(f) for f in faces] == [4] * 6
+    assert [[int(c.split("/")[0]) for c in f] for f in faces] == [list(q) for q in quads]
+    assert [ln for ln in lines if ln.startswith(("usemtl", "mtllib"))] == ["mtllib strip.mtl", "usemtl m0", "usemtl m1"]
+    # The file's UVs as the first set: refused for OBJ, kept in PLY.
+    with pytest.raises(neuv.Error, match="OBJ holds one UV set"):
+        neuv.unwrap_file(tmp_path / "strip.obj", tmp_path / "two.obj", uv_channel=1, method="lscm", use_cache=False)
+    assert not (tmp_path / "two.obj").exists()
+    neuv.unwrap_file(tmp_path / "strip.obj", tmp_path / "two.ply", uv_channel=1, method="lscm", use_cache=False)
+    header = (tmp_path / "two.ply").read_bytes().split(b"end_header")[0].decode()
+    assert "property float s\nproperty float t\n" in header and "property float s1\nproperty float t1\n" in header
+    with pytest.raises(ValueError):
+        neuv.unwrap_file(tmp_path / "strip.obj", tmp_path / "x.ply", uv_channel=2)
+    with pytest.raises(neuv.Error, match="no such|cannot open"):
+        neuv.unwrap_file(tmp_path / "missing.obj", tmp_path / "x.ply")
