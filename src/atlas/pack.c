@@ -625,8 +625,10 @@ done:
 /* Fixed scale g (texels_per_unit): tiles filled one after another. For
  * each tile every heuristic places what fits of the charts left, and the
  * one that places the most chart area wins; those charts stay on the tile.
- * best_pl and tile (#charts) get each chart's place and tile, *ntiles the
- * tiles used. */
+ * With few charts, orders shuffled as in pack_polish are tried too until
+ * one places every chart left (at the density the one-square search
+ * reaches, only a shuffled order may fit them all). best_pl and tile
+ * (#charts) get each chart's place and tile, *ntiles the tiles used. */
 static neuv_status pack_tiles(pack_ctx *P, pack_cache *cache, const atlas_pack_options *o, double g, placement *pl,
                               placement *best_pl, int *tile, int *ntiles, int *attempts)
 {
@@ -643,6 +645,11 @@ static neuv_status pack_tiles(pack_ctx *P, pack_cache *cache, const atlas_pack_o
     P->allow_miss = 1;
     neuv_status st = NEUV_OK;
     int nt = 0, nh = pack_heuristic_count(left);
+    int shuffles = left <= PACK_POLISH_MAX_CHARTS ? 2 * PACK_POLISH_TRIES : 0;
+    chart_order *co = mem_alloc(sizeof *co * ((size_t)n + 1));
+    if (!co) { mem_free(done); return error_nomem("atlas packing"); }
+    rng r;
+    rng_seed(&r, 0x711e5u);
     while (left > 0 && st == NEUV_OK) {
         if (nt == ATLAS_PACK_MAX_TILES) {
             st = error_set(NEUV_ERR_INPUT, "the charts need more than %d tiles of %d px at %g texels per unit",
@@ -651,9 +658,24 @@ static neuv_status pack_tiles(pack_ctx *P, pack_cache *cache, const atlas_pack_o
         }
         double best_area = 0;
         int best_n = 0;
-        for (int h = 0; h < nh; h++) {
+        for (int h = 0; h < nh + shuffles; h++) {
             double frac;
-            int fit = pack_attempt(P, cache, &heuristics[h], g, pl, &frac);
+            pack_heuristic hs;
+            if (h < nh) {
+                hs = heuristics[h];
+            } else {
+                int k = h - nh;
+                for (int c = 0; c < n; c++) {
+                    co[c].key = P->ch[c].W * P->ch[c].H * exp(0.7 * rng_normal(&r));
+                    co[c].id = c;
+                }
+                qsort(co, (size_t)n, sizeof *co, cmp_chart_order);
+                for (int c = 0; c < n; c++) P->sorted[order_shuffled][c] = co[c].id;
+                hs.order = order_shuffled;
+                hs.choose = k % 2 ? choose_lowest_top : choose_lowest_bottom;
+                hs.turns = k % 3 ? 4 : 8;
+            }
+            int fit = pack_attempt(P, cache, &hs, g, pl, &frac);
             ++*attempts;
             if (fit < 0) { st = error_nomem("atlas packing"); break; }
             double area = 0;
@@ -687,6 +709,7 @@ static neuv_status pack_tiles(pack_ctx *P, pack_cache *cache, const atlas_pack_o
     P->done = NULL;
     P->allow_miss = 0;
     mem_free(done);
+    mem_free(co);
     *ntiles = nt > 0 ? nt : 1;
     return st;
 }

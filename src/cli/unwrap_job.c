@@ -131,9 +131,22 @@ static int write_outputs(const neuv_atlas *atlas, const unwrap_job *job)
         if (rep.moved_charts > 0 && !rep.trained_on_copy) /* a copy's layout is nobody's texture */
             snprintf(moved, sizeof moved, ", %d chart%s moved from the model's layout", rep.moved_charts,
                      rep.moved_charts == 1 ? "" : "s");
-        printf("%s: %d charts (%s)%s, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f, %.1f s -> %s\n",
+        /* In tiles the metric's packing_efficiency (UV area in [0,1]^2) is undefined: the mean over the tiles. */
+        neuv_uv_tile *tiles = NULL;
+        int ntiles = 0;
+        if ((s = neuv_uv_tiles(out, &tiles, &ntiles)) != NEUV_OK) { neuv_free(json); return cli_fail(job->input_name, s); }
+        double packing = mt->packing_efficiency;
+        char tiled[48] = "";
+        if (ntiles > 1 || (ntiles == 1 && tiles[0].udim != 1001)) {
+            packing = 0;
+            for (int i = 0; i < ntiles; i++) packing += tiles[i].efficiency / ntiles;
+            snprintf(tiled, sizeof tiled, " over %d tiles", ntiles);
+        }
+        neuv_free(tiles);
+        printf("%s: %d charts (%s)%s, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f%s, %.1f s -> %s\n",
                job->input_name, rep.charts, sources, moved, mt->qce_mean, mt->flipped, mt->overlap_fraction,
-               mt->packing_efficiency, job->load_seconds + rep.seconds_total + export_seconds, job->output);
+               packing, tiled, job->load_seconds + rep.seconds_total + export_seconds, job->output);
+        if (ntiles > 1 && cli_print_tiles(job->input_name, out)) { neuv_free(json); return 2; }
         if (rep.repairs > 0) printf("  %d repairs (listed in the report)\n", rep.repairs);
         if (rep.seam_edges > 0)
             printf("  %d required seam edges (the report's seams), %d crossed\n", rep.seam_edges, rep.seams_crossed);
