@@ -192,6 +192,13 @@ T1=$(awk -v t="$T" 'BEGIN { print t * 0.7 }')
 "$PY" "$TMP/check.py" "$TMP/one.obj" 1024 2 "$T1" > "$TMP/facts3.txt"
 expect "T x 0.7: one tile" "[ \"$(val tiles "$TMP/facts3.txt")\" = 1001 ] && [ \"$(val close_samples "$TMP/facts3.txt")\" = 0 ]"
 
+# Over --train-faces: the copy trains in one square, the full mesh is packed into tiles.
+"$NEUV" unwrap "$IN" --method lscm --train-faces 2000 --texels-per-unit "$T" -o "$TMP/copy.obj" --quiet 2> /dev/null
+"$PY" "$TMP/check.py" "$TMP/copy.obj" 1024 2 "$T" > "$TMP/facts4.txt"
+expect "--train-faces: two tiles at T, padding kept" "[ \"$(val tiles "$TMP/facts4.txt")\" = 1001,1002 ] && \
+    awk -v d='$(val density_worst_rel "$TMP/facts4.txt")' -v b='$(val border_min_px "$TMP/facts4.txt")' 'BEGIN { exit !(d <= 1e-6 && b >= 2 - 1e-6) }' && \
+    [ \"$(val overlapped_samples "$TMP/facts4.txt")\" = 0 ] && [ \"$(val close_samples "$TMP/facts4.txt")\" = 0 ]"
+
 # Refusals: exit 2, one line.
 refuse() {
     local what=$1; shift
