@@ -163,6 +163,11 @@ refused plain --seam-angle "${LSCM[@]}" --seam-angle 10 --train-faces 500
 effect plain --no-hard-edges L 'r["seams"]["hard_edges"] is False and ref["seams"]["hard_edges"] is True and same' \
   --quiet "${LSCM[@]}" --no-hard-edges
 effect plain --max-memory L 'same' --quiet "${LSCM[@]}" --max-memory 100000
+# At 66 px per unit this shape's charts (54 px per unit in one 256 px square) need two tiles.
+effect plain --texels-per-unit L 'r["pack"]["texels_per_unit"] == 66 and [t["udim"] for t in r["tiles"]] == [1001, 1002] and [t["udim"] for t in ref["tiles"]] == [1001] and r["metrics"]["overlap_fraction"] == 0' \
+  --quiet "${LSCM[@]}" --texels-per-unit 66
+refused plain --texels-per-unit "${LSCM[@]}" --texels-per-unit 0
+refused plain --texels-per-unit "${LSCM[@]}" --texels-per-unit 1000
 
 # ---- save: the plain row's atlas, the option in the model -------------------
 effect save --method "$P_METHOD" 'same and cfg("s1.neuv")["method"] == "lscm"' \
@@ -191,6 +196,7 @@ refused save --check-inference "${LSCM[@]}" --check-inference --save-model "$TMP
 refused save --lscm-baseline "${LSCM[@]}" --lscm-baseline --save-model "$TMP/x.neuv"
 refused save --shared-layer "${LSCM[@]}" --shared-layer --save-model "$TMP/x.neuv"
 refused save --seam-angle "${LSCM[@]}" --seam-angle 10 --save-model "$TMP/x.neuv"
+refused save --texels-per-unit "${LSCM[@]}" --texels-per-unit 66 --save-model "$TMP/x.neuv"
 effect save --no-hard-edges L 'same and r["seams"]["hard_edges"] is False' --quiet "${LSCM[@]}" --no-hard-edges \
   --save-model "$TMP/s15.neuv"
 [ ! -e "$TMP/x.neuv" ] && ok || bad "a refused --save-model left $TMP/x.neuv"
@@ -216,7 +222,7 @@ effect surface --threads SA 'r["threads"] == 2 and same' --quiet --model "$S" --
 effect surface --quiet SA 'quiet and same' --model "$S" --quiet
 for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" "--max-memory 100" \
          "--resolution 512" "--padding 5" "--refine 0" "--allow-overlaps" "--finetune 3" "--shared-layer" \
-         "--seam-angle 10" "--no-hard-edges" "--save-model $TMP/x.neuv"; do
+         "--seam-angle 10" "--no-hard-edges" "--texels-per-unit 66" "--save-model $TMP/x.neuv"; do
   refused surface "${a%% *}" --model "$S" $a
 done
 [ ! -e "$TMP/x.neuv" ] && ok || bad "a refused --save-model left $TMP/x.neuv"
@@ -245,7 +251,7 @@ effect category --no-cache C 'not r["patches"]["operators_cache_hit"] and ref["p
   --quiet --model "$CAT" --no-cache
 effect category --threads C 'r["threads"] == 2' --quiet --model "$CAT" --threads 2
 for a in "--method lscm" "--preset paper" "--charts 3" "--max-distortion 1.3" "--iters 5" "--seed 2" "--train-faces 500" "--max-memory 100" \
-         "--check-inference" "--lscm-baseline" "--seam-angle 10" "--no-hard-edges" "--save-model $TMP/x.neuv"; do
+         "--check-inference" "--lscm-baseline" "--seam-angle 10" "--no-hard-edges" "--texels-per-unit 66" "--save-model $TMP/x.neuv"; do
   refused category "${a%% *}" --model "$CAT" $a
 done
 [ ! -e "$TMP/x.neuv" ] && ok || bad "a refused --save-model left $TMP/x.neuv"

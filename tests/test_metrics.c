@@ -3,6 +3,8 @@
 
 #include "metrics/uv_metrics.h"
 #include "metrics/uv_overlap.h"
+#include "metrics/uv_tiles.h"
+#include "core/mem.h"
 #include "mesh/shapes.h"
 #include "core/rng.h"
 #include "unwrap/chart_source.h"
@@ -440,6 +442,61 @@ static void test_no_uv(void)
     mesh_free(m);
 }
 
+/* UDIM tiles: the left chart fills [0,1]^2 (tile 1001, efficiency 1), the
+ * right one, halved, lies in [1.5,2] x [0,0.5] (1002, 0.25), then moved up
+ * by one (1012); the unhalved right chart spans u 1.5..2.5, two tiles, so
+ * the map is not laid out in tiles. One square: its efficiency is
+ * packing_efficiency's. */
+static void test_tiles(void)
+{
+    neuv_mesh *m = two_charts(0.5);
+    neuv_uv_tile *t = NULL;
+    int n = -1;
+    CHECK_INT(uv_tiles_compute(m, &t, &n), NEUV_OK);
+    CHECK_INT(n, 2);
+    if (n == 2) {
+        CHECK_INT(t[0].udim, 1001);
+        CHECK_INT(t[1].udim, 1002);
+        CHECK_NEAR(t[0].efficiency, 1, 1e-12);
+        CHECK_NEAR(t[1].efficiency, 0.25, 1e-12);
+        CHECK_INT(t[0].charts, 1);
+        CHECK_INT(t[1].charts, 1);
+        CHECK_INT(t[0].faces + t[1].faces, m->nf);
+        CHECK_INT(t[0].faces, t[1].faces);
+    }
+    mem_free(t);
+    for (int u = m->nuv / 2; u < m->nuv; u++) m->uv[2 * u + 1] += 1; /* the right chart's UVs */
+    CHECK_INT(uv_tiles_compute(m, &t, &n), NEUV_OK);
+    CHECK_INT(n, 2);
+    if (n == 2) CHECK_INT(t[1].udim, 1012);
+    mem_free(t);
+    mesh_free(m);
+
+    m = two_charts(1.0);
+    CHECK_INT(uv_tiles_compute(m, &t, &n), NEUV_OK);
+    CHECK_INT(n, 0);
+    CHECK(t == NULL);
+    mesh_free(m);
+
+    m = shape_grid(4, 4, 1.0, 1.0, 1);
+    for (int i = 0; i < 2 * m->nuv; i++) m->uv[i] *= 0.5;
+    CHECK_INT(uv_tiles_compute(m, &t, &n), NEUV_OK);
+    CHECK_INT(n, 1);
+    if (n == 1) {
+        CHECK_INT(t[0].udim, 1001);
+        CHECK_NEAR(t[0].efficiency, measure(m).packing_efficiency, 1e-15);
+        CHECK_INT(t[0].faces, m->nf);
+    }
+    mem_free(t);
+    /* A UV left of u = 0: no tile. */
+    m->uv[0] = -0.1;
+    CHECK_INT(uv_tiles_compute(m, &t, &n), NEUV_OK);
+    CHECK_INT(n, 0);
+    mesh_set_uv(m, 0, NULL, NULL);
+    CHECK_INT(uv_tiles_compute(m, &t, &n), NEUV_ERR_INPUT);
+    mesh_free(m);
+}
+
 int main(void)
 {
     test_jacobian();
@@ -456,5 +513,6 @@ int main(void)
     test_packing();
     test_degenerate();
     test_no_uv();
+    test_tiles();
     return check_report("test_metrics");
 }

@@ -365,9 +365,145 @@ static void test_split_for_packing(void)
     }
 }
 
+/* Tile t of the layout (the unit square with corner (t mod 10, t div 10)),
+ * its faces moved to [0,1]^2; the other faces left out. */
+static neuv_mesh *tile_submesh(const neuv_mesh *m, const int *face_tile, int t, const int *fc, int *fc_out)
+{
+    int nf = 0;
+    for (int f = 0; f < m->nf; f++) nf += face_tile[f] == t;
+    neuv_mesh *s = mesh_create(m->nv, nf, m->nuv);
+    memcpy(s->pos, m->pos, sizeof(double) * 3 * m->nv);
+    for (int u = 0; u < m->nuv; u++) {
+        s->uv[2 * u] = m->uv[2 * u] - t % 10;
+        s->uv[2 * u + 1] = m->uv[2 * u + 1] - t / 10;
+    }
+    for (int f = 0, i = 0; f < m->nf; f++) {
+        if (face_tile[f] != t) continue;
+        memcpy(s->tri + 3 * i, m->tri + 3 * f, sizeof(int) * 3);
+        memcpy(s->tri_uv + 3 * i, m->tri_uv + 3 * f, sizeof(int) * 3);
+        fc_out[i++] = fc[f];
+    }
+    return s;
+}
+
+/* Texel density and tiles: charts at T pixels per unit of 3D length, as
+ * many tiles as they need, each tile checked like one square (no overlap,
+ * padding between charts and to the tile border at the tile resolution);
+ * a chart too large for a tile and keep_scale with T are refused. */
+static void test_tiles(void)
+{
+    const int R = 256, pad = 2;
+    neuv_mesh *m = procedural_charts(42, 24);
+    int *fc = malloc(sizeof(int) * m->nf);
+    int nc = uv_charts(m, fc);
+    double a3 = mesh_total_area(m);
+    /* Density at which the charts' area is 2.2 tiles: at least 3 tiles. */
+    double T = R * sqrt(2.2 / a3);
+    neuv_mesh *orig = mesh_clone(m);
+    double *q0 = malloc(sizeof(double) * nc), *q1 = malloc(sizeof(double) * nc);
+    chart_qce(m, fc, nc, q0);
+    atlas_pack_options o;
+    atlas_pack_options_default(&o);
+    o.resolution = R;
+    o.padding = pad;
+    o.texels_per_unit = T;
+    atlas_chart_transform *xf = malloc(sizeof *xf * nc);
+    atlas_pack_result res;
+    CHECK_INT(atlas_pack(m, fc, nc, &o, xf, &res), NEUV_OK);
+    printf("tiles: %d charts at %.2f px/unit, %d tiles, efficiency %.3f\n", nc, T, res.tiles, res.efficiency);
+    CHECK(res.tiles >= 3 && res.tiles <= 5);
+    CHECK_NEAR(res.texel_scale, T, 1e-9 * T);
+
+    /* Every face inside one tile, away from its border by the padding;
+     * every tile used; the density is T on every face. */
+    int *face_tile = malloc(sizeof(int) * m->nf);
+    int *used = calloc((size_t)res.tiles, sizeof(int));
+    double uv_area = 0, worst_density = 0, border = 1;
+    for (int f = 0; f < m->nf; f++) {
+        const double *u[3];
+        for (int k = 0; k < 3; k++) u[k] = m->uv + 2 * m->tri_uv[3 * f + k];
+        int tx = (int)floor((u[0][0] + u[1][0] + u[2][0]) / 3), ty = (int)floor((u[0][1] + u[1][1] + u[2][1]) / 3);
+        face_tile[f] = ty * 10 + tx;
+        CHECK(tx >= 0 && tx < 10 && ty >= 0 && face_tile[f] < res.tiles);
+        if (face_tile[f] >= 0 && face_tile[f] < res.tiles) used[face_tile[f]]++;
+        for (int k = 0; k < 3; k++) {
+            border = fmin(border, fmin(u[k][0] - tx, u[k][1] - ty));
+            border = fmin(border, fmin(tx + 1 - u[k][0], ty + 1 - u[k][1]));
+        }
+        double a = 0.5 * fabs((u[1][0] - u[0][0]) * (u[2][1] - u[0][1]) - (u[1][1] - u[0][1]) * (u[2][0] - u[0][0]));
+        uv_area += a;
+        double f3 = mesh_face_area(m, f);
+        if (f3 > 0) worst_density = fmax(worst_density, fabs(sqrt(a / f3) * R / T - 1));
+    }
+    CHECK(border >= (double)pad / R - 1e-9);
+    CHECK(worst_density <= 1e-6);
+    for (int t = 0; t < res.tiles; t++) CHECK(used[t] > 0);
+    CHECK_NEAR(res.efficiency, uv_area / res.tiles, 1e-9);
+    CHECK_NEAR(uv_area, 2.2, 1e-6);
+
+    /* Each tile: no overlap, charts `pad` pixels apart at the tile resolution. */
+    int *fct = malloc(sizeof(int) * m->nf);
+    for (int t = 0; t < res.tiles; t++) {
+        neuv_mesh *s = tile_submesh(m, face_tile, t, fc, fct);
+        long overlaps, close;
+        check_layout(s, fct, 4 * R, 4.0 * pad, &overlaps, &close);
+        CHECK_INT(overlaps, 0);
+        CHECK_INT(close, 0);
+        mesh_free(s);
+    }
+
+    /* A similarity per chart, the tile offset in its transform. */
+    chart_qce(m, fc, nc, q1);
+    double worst = 0, err = 0;
+    for (int c = 0; c < nc; c++) worst = fmax(worst, fabs(q1[c] - q0[c]));
+    CHECK(worst <= 1e-6);
+    for (int f = 0; f < m->nf; f++)
+        for (int k = 0; k < 3; k++) {
+            double out[2];
+            atlas_chart_transform_apply(&xf[fc[f]], orig->uv + 2 * orig->tri_uv[3 * f + k], out);
+            const double *nu = m->uv + 2 * m->tri_uv[3 * f + k];
+            err = fmax(err, fmax(fabs(out[0] - nu[0]), fabs(out[1] - nu[1])));
+        }
+    CHECK(err <= 1e-9);
+
+    /* Deterministic. */
+    neuv_mesh *again = mesh_clone(orig);
+    CHECK_INT(atlas_pack(again, fc, nc, &o, NULL, NULL), NEUV_OK);
+    CHECK(again->nuv == m->nuv && !memcmp(again->uv, m->uv, sizeof(double) * 2 * m->nuv));
+    mesh_free(again);
+
+    /* A density whose charts fit one tile: one tile, at that density. */
+    again = mesh_clone(orig);
+    o.texels_per_unit = R * sqrt(0.3 / a3);
+    CHECK_INT(atlas_pack(again, fc, nc, &o, NULL, &res), NEUV_OK);
+    CHECK_INT(res.tiles, 1);
+    CHECK_NEAR(res.efficiency, 0.3, 1e-6);
+    mesh_free(again);
+
+    /* Refused: a chart larger than a tile, keep_scale with T, T not a number. */
+    again = mesh_clone(orig);
+    o.texels_per_unit = 4 * R; /* the largest chart is over 1 unit long */
+    CHECK_INT(atlas_pack(again, fc, nc, &o, NULL, NULL), NEUV_ERR_INPUT);
+    CHECK(strstr(neuv_last_error(), "too large for one 256 px tile") != NULL);
+    o.texels_per_unit = T;
+    o.keep_scale = 1;
+    CHECK_INT(atlas_pack(again, fc, nc, &o, NULL, NULL), NEUV_ERR_INPUT);
+    o.keep_scale = 0;
+    o.texels_per_unit = NAN;
+    CHECK_INT(atlas_pack(again, fc, nc, &o, NULL, NULL), NEUV_ERR_INPUT);
+    o.texels_per_unit = -1;
+    CHECK_INT(atlas_pack(again, fc, nc, &o, NULL, NULL), NEUV_ERR_INPUT);
+    mesh_free(again);
+
+    mesh_free(orig);
+    mesh_free(m);
+    free(fc); free(fct); free(face_tile); free(used); free(q0); free(q1); free(xf);
+}
+
 int main(void)
 {
     test_hull_and_rect();
+    test_tiles();
     test_bad_input();
     test_split_for_packing();
     neuv_mesh *m = procedural_charts(42, 24);

@@ -288,6 +288,12 @@ typedef struct neuv_pack_options {
     int resolution;          /* atlas side in pixels, 64..16384 (1024) */
     int padding;             /* pixels between charts and to the border, 0..resolution/8 (2) */
     int keep_scale;          /* neuv_pack_uvs only: keep the charts' relative scales */
+    double texels_per_unit;  /* > 0: every chart at this many pixels per unit of surface length, in as
+                                many resolution-sized tiles as that takes, laid out as UDIM tiles
+                                (tile k, UDIM 1001 + k, is the UV square [k mod 10, +1] x [k div 10, +1];
+                                neuv_uv_tiles lists them); a chart larger than one tile at that density
+                                is refused (NEUV_ERR_INPUT); not with keep_scale. 0 (default): one
+                                square at the largest density that fits */
 } neuv_pack_options;
 NEUV_API void neuv_pack_options_init(neuv_pack_options *o);
 
@@ -322,6 +328,8 @@ typedef struct neuv_unwrap_options {
     int hard_edges;          /* as in neuv_chart_options (default 1); where a model makes the charts
                                 they are left out and counted (neuv_report.hard_edges_not_kept),
                                 and with keep_model they are refused */
+    double texels_per_unit;  /* as in neuv_pack_options (0, the default: off); not with keep_model (a
+                                model's layout is one square) */
 } neuv_unwrap_options;
 NEUV_API void neuv_unwrap_options_init(neuv_unwrap_options *o);
 
@@ -344,6 +352,23 @@ typedef struct neuv_metrics {
  * object with the version, the input (input_name), vertices, faces and the metrics;
  * release with neuv_free; NULL when memory runs out. */
 NEUV_API char *neuv_metrics_json(const neuv_metrics *metrics, const neuv_mesh *mesh, const char *input_name);
+
+/* One UDIM tile of a UV layout: the unit square [u0, u0+1] x [v0, v0+1]
+ * with udim = 1001 + u0 + 10 v0 (u0 in 0..9, v0 in 0..9). */
+typedef struct neuv_uv_tile {
+    int udim;
+    int charts;                   /* UV-connected components in it */
+    int faces;
+    double efficiency;            /* UV area of its faces / tile area, faces counted as for
+                                     packing_efficiency (one tile at [0,1]^2: the same value) */
+} neuv_uv_tile;
+
+/* The UDIM tiles mesh's UVs occupy, by udim: *tiles (*count of them;
+ * release with neuv_free) lists each tile that holds a face. A layout is in
+ * tiles when every face lies within one tile (to 1e-9); otherwise, or
+ * without faces, *count is 0 and *tiles NULL. NEUV_ERR_INPUT when the mesh
+ * has no UVs. */
+NEUV_API neuv_status neuv_uv_tiles(const neuv_mesh *mesh, neuv_uv_tile **tiles, int *count);
 
 /* The metrics of mesh's UVs, positions welded first (on a
  * copy) so that seams are found across exactly coinciding vertices.
@@ -559,6 +584,7 @@ typedef struct neuv_pack_report {
     int charts;                /* UV-connected components packed */
     int attempts;              /* packings tried */
     double texel_scale;        /* pixels per unit of surface length */
+    int tiles;                 /* UDIM tiles used (1 without texels_per_unit) */
 } neuv_pack_report;
 
 /* Repacks the charts of mesh's UVs (UV-connected components) into one

@@ -16,8 +16,8 @@ $NEUV_LIBRARY, then in the repository's build folder (neuv.library_path).
 """
 from ._capi import lib as _lib, library_path
 from ._errors import Cancelled, Error
-from ._api import Atlas, Model, evaluate, pack, train_category, unwrap, unwrap_file
+from ._api import Atlas, Model, evaluate, pack, train_category, unwrap, unwrap_file, uv_tiles
 
 __version__ = _lib.neuv_version().decode()
 __all__ = ["Atlas", "Cancelled", "Error", "Model", "evaluate", "library_path", "pack", "train_category", "unwrap",
-           "unwrap_file"]
+           "unwrap_file", "uv_tiles"]

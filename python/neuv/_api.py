@@ -366,9 +366,12 @@ def _uv_mesh(V, F, uvs):
 
 def pack(V, F, uvs, *, return_report=False, **options):
     """Repacks the charts (UV-connected components) of existing UVs into one
-    square. uvs: (N, 2) per vertex or (M, 3, 2) per corner; the result has
-    the same layout. Options: resolution, padding, keep_scale. With
-    return_report=True also {'charts', 'attempts', 'texel_scale'}."""
+    square, or with texels_per_unit=T at T pixels per unit of surface length
+    into as many resolution-sized UDIM tiles as that takes (uv_tiles lists
+    them). uvs: (N, 2) per vertex or (M, 3, 2) per corner; the result has
+    the same layout. Options: resolution, padding, keep_scale,
+    texels_per_unit. With return_report=True also {'charts', 'attempts',
+    'texel_scale', 'tiles'}."""
     o = _options.make(_capi.PackOptions, options, _options.PACK_UVS, "neuv.pack")
     V, F, UV, per_corner, mesh = _uv_mesh(V, F, uvs)
     try:
@@ -392,6 +395,23 @@ def pack(V, F, uvs, *, return_report=False, **options):
             raise ValueError(f"vertex {v} joins charts that touch only at it and were packed apart, so one UV "
                              "per vertex cannot hold the result: pass per-corner UVs (uvs[F], shape (M, 3, 2))")
     return (result, _struct_dict(report)) if return_report else result
+
+
+def uv_tiles(V, F, uvs):
+    """The UDIM tiles UVs lie in (neuv_uv_tiles): a list of dicts {'udim',
+    'charts', 'faces', 'efficiency'} by udim, tile k = 1001 + u0 + 10 v0
+    being the square [u0, u0+1] x [v0, v0+1]; [] when a face leaves its tile.
+    uvs: (N, 2) per vertex or (M, 3, 2) per corner."""
+    V, F, UV, per_corner, mesh = _uv_mesh(V, F, uvs)
+    tiles = ctypes.POINTER(_capi.UvTile)()
+    count = ctypes.c_int(0)
+    try:
+        check(lib.neuv_uv_tiles(mesh, byref(tiles), byref(count)))
+        result = [_struct_dict(tiles[i]) for i in range(count.value)]
+    finally:
+        lib.neuv_free(tiles)
+        lib.neuv_mesh_free(mesh)
+    return result
 
 
 def evaluate(V, F, uvs):

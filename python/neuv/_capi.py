@@ -47,7 +47,7 @@ class ParamOptions(Structure):
 
 
 class PackOptions(Structure):
-    _fields_ = [("resolution", c_int), ("padding", c_int), ("keep_scale", c_int)]
+    _fields_ = [("resolution", c_int), ("padding", c_int), ("keep_scale", c_int), ("texels_per_unit", c_double)]
 
 
 class UnwrapOptions(Structure):
@@ -56,7 +56,7 @@ class UnwrapOptions(Structure):
                 ("resolution", c_int), ("padding", c_int), ("allow_overlaps", c_int), ("use_cache", c_int),
                 ("keep_model", c_int), ("train_faces", c_int), ("max_memory_mb", c_int),
                 ("seam_angle", c_double), ("seam_edges", c_void_p), ("seam_edge_count", c_int),
-                ("hard_edges", c_int)]
+                ("hard_edges", c_int), ("texels_per_unit", c_double)]
 
 
 class ApplyOptions(Structure):
@@ -87,7 +87,11 @@ class TrainReport(Structure):
 
 
 class PackReport(Structure):
-    _fields_ = [("charts", c_int), ("attempts", c_int), ("texel_scale", c_double)]
+    _fields_ = [("charts", c_int), ("attempts", c_int), ("texel_scale", c_double), ("tiles", c_int)]
+
+
+class UvTile(Structure):
+    _fields_ = [("udim", c_int), ("charts", c_int), ("faces", c_int), ("efficiency", c_double)]
 
 
 # The structs the layout test checks against the header: C name -> class.
@@ -96,6 +100,7 @@ STRUCTS = {
     "neuv_param_options": ParamOptions, "neuv_pack_options": PackOptions,
     "neuv_unwrap_options": UnwrapOptions, "neuv_apply_options": ApplyOptions, "neuv_metrics": Metrics,
     "neuv_atlas_output": AtlasOutput, "neuv_train_report": TrainReport, "neuv_pack_report": PackReport,
+    "neuv_uv_tile": UvTile,
 }
 
 _P = c_void_p  # opaque neuv_mesh *, neuv_atlas *, neuv_model *
@@ -132,6 +137,7 @@ FUNCTIONS = {
     "neuv_atlas_parameterize": (c_int, [_P, POINTER(ParamOptions)]),
     "neuv_atlas_pack": (c_int, [_P, POINTER(PackOptions)]),
     "neuv_atlas_generate": (c_int, [_P, POINTER(UnwrapOptions)]),
+    "neuv_uv_tiles": (c_int, [_P, POINTER(POINTER(UvTile)), POINTER(c_int)]),
     "neuv_atlas_stage": (c_int, [_P]),
     "neuv_atlas_chart_count": (c_int, [_P]),
     "neuv_atlas_get_output": (c_int, [_P, c_int, POINTER(AtlasOutput)]),

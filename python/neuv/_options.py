@@ -77,6 +77,15 @@ def _seam_angle(name, value):
     return float(value)
 
 
+def _texels_per_unit(name, value):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"option {name} must be a number, got {value!r}")
+    if not 0 <= value < float("inf"):
+        raise ValueError(f"option {name} must be a finite number of pixels per unit of surface length "
+                         f"(0: off), got {value!r}")
+    return float(value)
+
+
 def _set_seam_edges(struct, name, value):
     """seam_edges: pairs of vertex indices, anything NumPy reads as (n, 2)
     integers. The array lives on the struct (as _seam_edges) for as long as
@@ -122,6 +131,7 @@ CONVERTERS = {
     "seam_edges": None,  # two fields: _set_seam_edges
     "hard_edges": _flag,
     "keep_scale": _flag,
+    "texels_per_unit": _texels_per_unit,
     "check_inference": _flag,
     "lscm_baseline": _flag,
     "shared_layer": _flag,
@@ -133,7 +143,7 @@ CONVERTERS = {
 CHART = ("preset", "charts", "max_distortion", "iters", "seed", "threads", "use_cache", "max_memory_mb", "seam_angle",
          "seam_edges", "hard_edges")
 PARAM = ("method", "preset", "iters", "refine", "seed", "threads", "allow_overlaps")
-PACK = ("resolution", "padding")
+PACK = ("resolution", "padding", "texels_per_unit")
 PACK_UVS = PACK + ("keep_scale",)
 UNWRAP = tuple(dict.fromkeys(CHART + PARAM + PACK + ("train_faces",)))
 GENERATE = UNWRAP + ("keep_model",)

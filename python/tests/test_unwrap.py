@@ -236,3 +236,51 @@ def test_unwrap_file_keeps_what_the_file_carries(tmp_path):
         neuv.unwrap_file(tmp_path / "strip.obj", tmp_path / "x.ply", uv_channel=2)
     with pytest.raises(neuv.Error, match="no such|cannot open"):
         neuv.unwrap_file(tmp_path / "missing.obj", tmp_path / "x.ply")
+
+
+def squares(n):
+    """n unit squares in the plane z = k, apart, two triangles each, UVs their (x, y)."""
+    V = np.array([[x, y, k] for k in range(n) for x, y in ((0, 0), (1, 0), (1, 1), (0, 1))], float)
+    F = np.array([[4 * k + a for a in t] for k in range(n) for t in ((0, 1, 2), (0, 2, 3))])
+    return V, F, V[:, :2].copy()
+
+
+def test_texels_per_unit_tiles(mesh):
+    """texels_per_unit: 20 unit squares at 56 px per unit are 57 px boxes; with
+    2 px padding a 256 px tile holds 4 by 4 of them, so 16 go into tile 1001
+    and 4 into 1002, each at exactly 56 px per unit."""
+    V, F, uv = squares(20)
+    packed, rep = neuv.pack(V, F, uv, resolution=256, texels_per_unit=56, return_report=True)
+    assert rep["tiles"] == 2 and rep["charts"] == 20 and rep["texel_scale"] == pytest.approx(56, rel=1e-12)
+    tiles = neuv.uv_tiles(V, F, packed)
+    assert [(t["udim"], t["charts"], t["faces"]) for t in tiles] == [(1001, 16, 32), (1002, 4, 8)]
+    assert tiles[0]["efficiency"] == pytest.approx(16 * (56 / 256) ** 2, rel=1e-12)
+    assert tiles[1]["efficiency"] == pytest.approx(4 * (56 / 256) ** 2, rel=1e-12)
+    q = packed[F]
+    cell = np.floor(q.mean(axis=1))
+    assert (q - cell[:, None, :]).min() >= 2 / 256 - 1e-12 and (cell[:, None, :] + 1 - q).min() >= 2 / 256 - 1e-12
+    side = np.linalg.norm(q[::2, 1] - q[::2, 0], axis=1)  # a side of each square
+    np.testing.assert_allclose(side, 56 / 256, rtol=1e-12)
+    # Refusals: a square larger than a tile, a negative density, keep_scale with it.
+    with pytest.raises(neuv.Error, match="too large for one 256 px tile"):
+        neuv.pack(V, F, uv, resolution=256, texels_per_unit=300)
+    with pytest.raises(ValueError, match="texels_per_unit"):
+        neuv.pack(V, F, uv, texels_per_unit=-1)
+    with pytest.raises(neuv.Error, match="relative scales"):
+        neuv.pack(V, F, uv, texels_per_unit=56, keep_scale=True)
+
+    # unwrap: the torus at 0.9 of the density its one-square packing reached fits one tile, 1001.
+    V, F = mesh
+    vmapping, indices, uvs, report = neuv.unwrap(V, F, return_report=True, **QUICK)
+    area = 0.5 * np.linalg.norm(np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]]), axis=1).sum()
+    eff = report["pack"]["efficiency"]
+    T = 0.9 * 256 * np.sqrt(eff / area)
+    vmapping, indices, uvs, report = neuv.unwrap(V, F, return_report=True, texels_per_unit=T, **QUICK)
+    assert [t["udim"] for t in report["tiles"]] == [1001]
+    assert report["tiles"][0]["efficiency"] == pytest.approx(0.81 * eff, rel=1e-6)
+    assert report["pack"]["texels_per_unit"] == pytest.approx(T)
+    assert neuv.uv_tiles(V[vmapping], indices, uvs) == pytest.approx(report["tiles"])
+    atlas = neuv.Atlas()
+    atlas.add_mesh(V, F)
+    with pytest.raises(neuv.Error, match="texels_per_unit cannot be used with keep_model"):
+        atlas.generate(keep_model=True, texels_per_unit=T, **QUICK)

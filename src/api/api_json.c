@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/json_writer.h"
 #include "metrics/uv_metrics.h"
+#include "metrics/uv_tiles.h"
 #include "mesh/mesh.h"
 
 #include <stdio.h>
@@ -36,6 +37,12 @@ char *neuv_metrics_json(const neuv_metrics *metrics, const neuv_mesh *mesh, cons
     json_begin_object(&w);
     uv_metrics_write_json(&mt, &w);
     json_end_object(&w);
+    neuv_uv_tile *tiles = NULL;
+    int ntiles = 0;
+    if (mesh->nuv > 0 && mesh->tri_uv && neuv_uv_tiles(mesh, &tiles, &ntiles) != NEUV_OK) w.failed = 1;
+    json_key(&w, "tiles");
+    uv_tiles_write_json(tiles, ntiles, &w);
+    neuv_free(tiles);
     json_end_object(&w);
     return api_json_finish(&w);
 }

@@ -83,5 +83,6 @@ void api_options_set_pack(neuv_unwrap_options *u, const neuv_pack_options *o)
 {
     u->resolution = o->resolution;
     u->padding = o->padding;
+    u->texels_per_unit = o->texels_per_unit;
 }
 

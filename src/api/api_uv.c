@@ -11,6 +11,7 @@
 #include "core/mem.h"
 #include "mesh/clean.h"
 #include "metrics/uv_metrics.h"
+#include "metrics/uv_tiles.h"
 
 neuv_status neuv_evaluate(const neuv_mesh *mesh, const neuv_callbacks *cb, neuv_metrics *out)
 {
@@ -29,6 +30,22 @@ neuv_status neuv_evaluate(const neuv_mesh *mesh, const neuv_callbacks *cb, neuv_
     return s;
 }
 
+neuv_status neuv_uv_tiles(const neuv_mesh *mesh, neuv_uv_tile **tiles, int *count)
+{
+    if (!tiles || !count) return error_set(NEUV_ERR_INPUT, "neuv_uv_tiles: no output");
+    *tiles = NULL;
+    *count = 0;
+    if (!mesh) return error_set(NEUV_ERR_INPUT, "neuv_uv_tiles: no mesh");
+    if (mesh->nuv == 0 || !mesh->tri_uv) return error_set(NEUV_ERR_INPUT, "no UVs to lay out in tiles");
+    /* Charts across shared edges, as neuv_evaluate finds them. */
+    neuv_mesh *m = mesh_clone(mesh);
+    if (!m) return error_nomem("the mesh");
+    neuv_status s = mesh_weld_positions(m) < 0 ? error_nomem("welding vertices") : NEUV_OK;
+    if (s == NEUV_OK) s = uv_tiles_compute(m, tiles, count);
+    mesh_free(m);
+    return s;
+}
+
 neuv_status neuv_pack_uvs(neuv_mesh *m, const neuv_pack_options *o, const neuv_callbacks *cb,
                           neuv_pack_report *report)
 {
@@ -41,6 +58,7 @@ neuv_status neuv_pack_uvs(neuv_mesh *m, const neuv_pack_options *o, const neuv_c
     po.resolution = o->resolution;
     po.padding = o->padding;
     po.keep_scale = o->keep_scale;
+    po.texels_per_unit = o->texels_per_unit;
     if (po.resolution < 8 || po.resolution > 32768)
         return error_set(NEUV_ERR_INPUT, "resolution must be between 8 and 32768 px, got %d", po.resolution);
     if (po.padding < 0 || 2 * po.padding + 1 > po.resolution)
@@ -62,6 +80,7 @@ neuv_status neuv_pack_uvs(neuv_mesh *m, const neuv_pack_options *o, const neuv_c
         report->charts = nc;
         report->attempts = res.attempts;
         report->texel_scale = res.texel_scale;
+        report->tiles = res.tiles;
     }
     return s;
 }

@@ -45,6 +45,8 @@ typedef struct pack_ctx {
     double *L;              /* #UV' by 2, chart UVs scaled, rotated, corner at the origin */
     int max_verts;
     int resolution, padding;
+    const unsigned char *done; /* tiles: charts placed on an earlier tile, left out (NULL: none) */
+    int allow_miss;            /* tiles: a chart that finds no room is left for the next tile (k = -1) */
 } pack_ctx;
 
 void atlas_pack_options_default(atlas_pack_options *o)
@@ -53,6 +55,7 @@ void atlas_pack_options_default(atlas_pack_options *o)
     o->padding = 2;
     o->keep_scale = 0;
     o->quick = 0;
+    o->texels_per_unit = 0;
 }
 
 void atlas_chart_transform_apply(const atlas_chart_transform *t, const double uv[2], double out[2])
@@ -192,7 +195,9 @@ static void pack_cache_reset(pack_cache *pc, double g)
 
 /* One packing at global scale g (pixels per world unit). Returns 1 when all
  * charts fit (pl filled), 0 when one does not (*frac_placed: share of the
- * charts' box area placed so far), -1 on allocation failure. */
+ * charts' box area placed so far), -1 on allocation failure. Charts in
+ * P->done are left out; with P->allow_miss a chart that finds no room gets
+ * k = -1 and the others are still placed. */
 static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic *hs, double g, placement *pl,
                         double *frac_placed)
 {
@@ -204,7 +209,7 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
     double placed = 0, total = 0;
     for (int i = 0; i < P->ncharts; i++) {
         const chart_info *c = &P->ch[i];
-        if (c->f_end > c->f_begin) total += (g * c->W + 1) * (g * c->H + 1);
+        if (c->f_end > c->f_begin && !(P->done && P->done[i])) total += (g * c->W + 1) * (g * c->H + 1);
     }
     int rc = 1;
     turn_shape scratch;
@@ -214,10 +219,11 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
     footprint_spans best_own;
     memset(&scratch, 0, sizeof scratch);
     memset(&best_own, 0, sizeof best_own);
+    int missed = 0;
     for (int n = 0; n < P->ncharts && rc == 1; n++) {
         int ci = P->sorted[hs->order][n];
         const chart_info *c = &P->ch[ci];
-        if (c->f_end == c->f_begin) continue;
+        if (c->f_end == c->f_begin || (P->done && P->done[ci])) continue;
         int best_k = -1, best_j = 0, bx = 0, by = 0, best_top = R + 1, bw = 0, bh = 0;
         for (int j = 0; j <= pack_turns_max && rc == 1; j++) {
             /* Turn j is one of this heuristic's turns, or the smallest square's turn when it is
@@ -267,8 +273,11 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
             }
             if (t == &scratch) turn_shape_clear(&scratch);
         }
-        if (rc == 1 && best_k < 0) rc = 0;
-        if (rc == 1) {
+        if (rc == 1 && best_k < 0) {
+            if (P->allow_miss) { pl[ci].k = -1; missed = 1; }
+            else rc = 0;
+        }
+        if (rc == 1 && best_k >= 0) {
             occupancy_mark(&occ, best_sp, bx, by, pad);
             pl[ci].x = bx; pl[ci].y = by; pl[ci].k = best_k; pl[ci].w = bw; pl[ci].h = bh; pl[ci].j = best_j;
             placed += (g * c->W + 1) * (g * c->H + 1);
@@ -279,7 +288,7 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
     occupancy_free(&occ);
     mem_free(q);
     *frac_placed = total > 0 ? placed / total : 1;
-    return rc;
+    return rc == 1 && missed ? 0 : rc;
 }
 
 /* The extra turn in [0, pi/2) whose bounding box has the shortest longer
@@ -543,55 +552,21 @@ static int pack_polish(pack_ctx *P, pack_cache *pc, double *g, placement *pl, pl
     return rc;
 }
 
-neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
-                       const atlas_pack_options *opt, atlas_chart_transform *xf,
-                       atlas_pack_result *res)
+/* One square: the largest global scale g at which every chart fits, by
+ * shrinking from an upper bound and bisecting, then the polish. best_pl
+ * holds the placements at *g_out. */
+static neuv_status pack_search_scale(pack_ctx *P, pack_cache *cache, const atlas_pack_options *po, placement *pl,
+                                     placement *best_pl, double *g_out, int *attempts_out)
 {
-    atlas_pack_options o;
-    if (opt) o = *opt;
-    else atlas_pack_options_default(&o);
-    if (!m || m->nuv <= 0 || !m->tri_uv) return error_set(NEUV_ERR_INPUT, "packing needs a mesh with UVs");
-    if (o.resolution < 8 || o.resolution > 32768)
-        return error_set(NEUV_ERR_INPUT, "atlas resolution %d px is outside 8..32768", o.resolution);
-    if (o.padding < 0 || 2 * o.padding + 1 > o.resolution)
-        return error_set(NEUV_ERR_INPUT, "padding %d px does not fit in a %d px atlas", o.padding, o.resolution);
-    if (ncharts < 0) return error_set(NEUV_ERR_INPUT, "negative chart count");
-    for (int f = 0; f < m->nf; f++)
-        if (face_chart[f] < 0 || face_chart[f] >= ncharts)
-            return error_set(NEUV_ERR_INPUT, "face %d has chart id %d outside 0..%d", f, face_chart[f], ncharts - 1);
-    for (int f = 0; f < 3 * m->nf; f++)
-        if (m->tri_uv[f] < 0 || m->tri_uv[f] >= m->nuv)
-            return error_set(NEUV_ERR_INPUT, "face %d uses UV index %d outside 0..%d", f / 3, m->tri_uv[f], m->nuv - 1);
-    for (int u = 0; u < 2 * m->nuv; u++)
-        if (!isfinite(m->uv[u])) return error_set(NEUV_ERR_INPUT, "UV %d is not a finite number", u / 2);
-
-    pack_ctx P;
-    memset(&P, 0, sizeof P);
-    pack_cache cache;
-    memset(&cache, 0, sizeof cache);
-    P.resolution = o.resolution;
-    P.padding = o.padding;
-    int *new_tri_uv = NULL, *old_of_new = NULL, nuv_new = 0;
-    placement *pl = NULL, *best_pl = NULL;
-    double *uv_new = NULL, *q = NULL;
-    neuv_status st = pack_prepare(m, face_chart, ncharts, o.keep_scale, &P, &new_tri_uv, &old_of_new, &nuv_new);
-    if (st != NEUV_OK) goto done;
-    cache.n = ncharts * (pack_turns_max + 1);
-    cache.t = mem_calloc((size_t)cache.n + 1, sizeof *cache.t);
-    cache.budget = PACK_CACHE_BYTES;
-    if (!cache.t) { st = error_nomem("atlas packing"); goto done; }
-    pl = mem_calloc((size_t)ncharts + 1, sizeof *pl);
-    best_pl = mem_calloc((size_t)ncharts + 1, sizeof *best_pl);
-    uv_new = mem_alloc(sizeof *uv_new * 2 * ((size_t)nuv_new + 1));
-    q = mem_alloc(sizeof *q * 2 * ((size_t)P.max_verts + 1));
-    if (!pl || !best_pl || !uv_new || !q) { st = error_nomem("atlas packing"); goto done; }
-
+    const atlas_pack_options o = *po;
+    const int ncharts = P->ncharts;
+    neuv_status st = NEUV_OK;
     /* Upper bound on the global scale: the charts' total area cannot exceed
      * the free square, nor can the longest chart side. Then shrink until
      * everything fits and bisect between the best fit and the first miss. */
     double inner = o.resolution - 2.0 * o.padding, area = 0, longest = 0;
     for (int c = 0; c < ncharts; c++) {
-        const chart_info *ci = &P.ch[c];
+        const chart_info *ci = &P->ch[c];
         if (ci->f_end == ci->f_begin) continue;
         area += ci->area;
         if (ci->fit_side > longest) longest = ci->fit_side;
@@ -608,7 +583,7 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
         int nh = pack_heuristic_count(ncharts);
         for (int h = 0; h < nh && rc == 0; h++) {
             double fh;
-            rc = pack_attempt(&P, &cache, &heuristics[h], g, pl, &fh);
+            rc = pack_attempt(P, cache, &heuristics[h], g, pl, &fh);
             attempts++;
             if (fh > frac) frac = fh;
         }
@@ -637,11 +612,167 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
                        ncharts, o.resolution, o.padding);
         goto done;
     }
-    if (!o.quick && pack_polish(&P, &cache, &lo, pl, best_pl, &attempts) != 0) {
+    if (!o.quick && pack_polish(P, cache, &lo, pl, best_pl, &attempts) != 0) {
         st = error_nomem("atlas packing");
         goto done;
     }
-    g = lo;
+    *g_out = lo;
+done:
+    *attempts_out = attempts;
+    return st;
+}
+
+/* Fixed scale g (texels_per_unit): tiles filled one after another. For
+ * each tile every heuristic places what fits of the charts left, and the
+ * one that places the most chart area wins; those charts stay on the tile.
+ * With few charts, orders shuffled as in pack_polish are tried too until
+ * one places every chart left (at the density the one-square search
+ * reaches, only a shuffled order may fit them all). best_pl and tile
+ * (#charts) get each chart's place and tile, *ntiles the tiles used. */
+static neuv_status pack_tiles(pack_ctx *P, pack_cache *cache, const atlas_pack_options *o, double g, placement *pl,
+                              placement *best_pl, int *tile, int *ntiles, int *attempts)
+{
+    const int n = P->ncharts;
+    unsigned char *done = mem_calloc((size_t)n + 1, 1);
+    if (!done) return error_nomem("atlas packing");
+    int left = 0;
+    for (int c = 0; c < n; c++) {
+        tile[c] = 0;
+        if (P->ch[c].f_end == P->ch[c].f_begin) done[c] = 1;
+        else left++;
+    }
+    P->done = done;
+    P->allow_miss = 1;
+    neuv_status st = NEUV_OK;
+    int nt = 0, nh = pack_heuristic_count(left);
+    int shuffles = left <= PACK_POLISH_MAX_CHARTS ? 2 * PACK_POLISH_TRIES : 0;
+    chart_order *co = mem_alloc(sizeof *co * ((size_t)n + 1));
+    if (!co) { mem_free(done); return error_nomem("atlas packing"); }
+    rng r;
+    rng_seed(&r, 0x711e5u);
+    while (left > 0 && st == NEUV_OK) {
+        if (nt == ATLAS_PACK_MAX_TILES) {
+            st = error_set(NEUV_ERR_INPUT, "the charts need more than %d tiles of %d px at %g texels per unit",
+                           ATLAS_PACK_MAX_TILES, o->resolution, o->texels_per_unit);
+            break;
+        }
+        double best_area = 0;
+        int best_n = 0;
+        for (int h = 0; h < nh + shuffles; h++) {
+            double frac;
+            pack_heuristic hs;
+            if (h < nh) {
+                hs = heuristics[h];
+            } else {
+                int k = h - nh;
+                for (int c = 0; c < n; c++) {
+                    co[c].key = P->ch[c].W * P->ch[c].H * exp(0.7 * rng_normal(&r));
+                    co[c].id = c;
+                }
+                qsort(co, (size_t)n, sizeof *co, cmp_chart_order);
+                for (int c = 0; c < n; c++) P->sorted[order_shuffled][c] = co[c].id;
+                hs.order = order_shuffled;
+                hs.choose = k % 2 ? choose_lowest_top : choose_lowest_bottom;
+                hs.turns = k % 3 ? 4 : 8;
+            }
+            int fit = pack_attempt(P, cache, &hs, g, pl, &frac);
+            ++*attempts;
+            if (fit < 0) { st = error_nomem("atlas packing"); break; }
+            double area = 0;
+            int placed = 0;
+            for (int c = 0; c < n; c++)
+                if (!done[c] && pl[c].k >= 0) { area += P->ch[c].area; placed++; }
+            if (placed > 0 && area > best_area) {
+                best_area = area;
+                best_n = placed;
+                for (int c = 0; c < n; c++)
+                    if (!done[c]) best_pl[c] = pl[c];
+            }
+            if (fit == 1) break; /* everything left fits this tile */
+        }
+        if (st != NEUV_OK) break;
+        if (best_n == 0) { /* not even the largest chart left fits an empty tile */
+            int big = -1;
+            for (int i = 0; i < n && big < 0; i++)
+                if (!done[P->sorted[order_long_side][i]]) big = P->sorted[order_long_side][i];
+            const chart_info *c = &P->ch[big];
+            st = error_set(NEUV_ERR_INPUT,
+                           "chart %d is %.0f x %.0f px at %g texels per unit, too large for one %d px tile with %d px "
+                           "padding: lower texels_per_unit or raise the resolution",
+                           big, ceil(g * c->W), ceil(g * c->H), o->texels_per_unit, o->resolution, o->padding);
+            break;
+        }
+        for (int c = 0; c < n; c++)
+            if (!done[c] && best_pl[c].k >= 0) { done[c] = 1; tile[c] = nt; left--; }
+        nt++;
+    }
+    P->done = NULL;
+    P->allow_miss = 0;
+    mem_free(done);
+    mem_free(co);
+    *ntiles = nt > 0 ? nt : 1;
+    return st;
+}
+
+neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
+                       const atlas_pack_options *opt, atlas_chart_transform *xf,
+                       atlas_pack_result *res)
+{
+    atlas_pack_options o;
+    if (opt) o = *opt;
+    else atlas_pack_options_default(&o);
+    if (!m || m->nuv <= 0 || !m->tri_uv) return error_set(NEUV_ERR_INPUT, "packing needs a mesh with UVs");
+    if (o.resolution < 8 || o.resolution > 32768)
+        return error_set(NEUV_ERR_INPUT, "atlas resolution %d px is outside 8..32768", o.resolution);
+    if (o.padding < 0 || 2 * o.padding + 1 > o.resolution)
+        return error_set(NEUV_ERR_INPUT, "padding %d px does not fit in a %d px atlas", o.padding, o.resolution);
+    if (ncharts < 0) return error_set(NEUV_ERR_INPUT, "negative chart count");
+    for (int f = 0; f < m->nf; f++)
+        if (face_chart[f] < 0 || face_chart[f] >= ncharts)
+            return error_set(NEUV_ERR_INPUT, "face %d has chart id %d outside 0..%d", f, face_chart[f], ncharts - 1);
+    for (int f = 0; f < 3 * m->nf; f++)
+        if (m->tri_uv[f] < 0 || m->tri_uv[f] >= m->nuv)
+            return error_set(NEUV_ERR_INPUT, "face %d uses UV index %d outside 0..%d", f / 3, m->tri_uv[f], m->nuv - 1);
+    for (int u = 0; u < 2 * m->nuv; u++)
+        if (!isfinite(m->uv[u])) return error_set(NEUV_ERR_INPUT, "UV %d is not a finite number", u / 2);
+    if (!(o.texels_per_unit >= 0) || !isfinite(o.texels_per_unit))
+        return error_set(NEUV_ERR_INPUT, "texels per unit must be a finite number >= 0, got %g", o.texels_per_unit);
+    if (o.texels_per_unit > 0 && o.keep_scale)
+        return error_set(NEUV_ERR_INPUT, "texels per unit sets every chart's scale: it cannot keep the charts' relative scales");
+
+    pack_ctx P;
+    memset(&P, 0, sizeof P);
+    pack_cache cache;
+    memset(&cache, 0, sizeof cache);
+    P.resolution = o.resolution;
+    P.padding = o.padding;
+    int *new_tri_uv = NULL, *old_of_new = NULL, nuv_new = 0;
+    placement *pl = NULL, *best_pl = NULL;
+    double *uv_new = NULL, *q = NULL;
+    int *tile = NULL;
+    neuv_status st = pack_prepare(m, face_chart, ncharts, o.keep_scale, &P, &new_tri_uv, &old_of_new, &nuv_new);
+    if (st != NEUV_OK) goto done;
+    cache.n = ncharts * (pack_turns_max + 1);
+    cache.t = mem_calloc((size_t)cache.n + 1, sizeof *cache.t);
+    cache.budget = PACK_CACHE_BYTES;
+    if (!cache.t) { st = error_nomem("atlas packing"); goto done; }
+    pl = mem_calloc((size_t)ncharts + 1, sizeof *pl);
+    best_pl = mem_calloc((size_t)ncharts + 1, sizeof *best_pl);
+    uv_new = mem_alloc(sizeof *uv_new * 2 * ((size_t)nuv_new + 1));
+    q = mem_alloc(sizeof *q * 2 * ((size_t)P.max_verts + 1));
+    if (!pl || !best_pl || !uv_new || !q) { st = error_nomem("atlas packing"); goto done; }
+
+    int ntiles = 1, attempts = 0;
+    double g = 0;
+    if (o.texels_per_unit > 0) {
+        g = o.texels_per_unit;
+        tile = mem_alloc(sizeof *tile * ((size_t)ncharts + 1));
+        if (!tile) { st = error_nomem("atlas packing"); goto done; }
+        st = pack_tiles(&P, &cache, &o, g, pl, best_pl, tile, &ntiles, &attempts);
+    } else {
+        st = pack_search_scale(&P, &cache, &o, pl, best_pl, &g, &attempts);
+    }
+    if (st != NEUV_OK) goto done;
     for (int c = 0; c < ncharts; c++) {
         const chart_info *ci = &P.ch[c];
         if (ci->f_end == ci->f_begin) {
@@ -650,10 +781,20 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
         }
         int w, h;
         double mjx, mjy;
+        /* Tile k is the unit square whose corner is (k mod 10, k div 10) (UDIM 1001 + k). */
+        int u0 = tile ? tile[c] % 10 : 0, v0 = tile ? tile[c] / 10 : 0;
         chart_oriented(&P, ci, best_pl[c].j, g, q, &w, &h, &mjx, &mjy);
-        if (xf) xf[c] = chart_transform(&P, ci, &best_pl[c], g, mjx, mjy);
-        for (int v = ci->v_begin; v < ci->v_end; v++)
-            chart_place_uv(&best_pl[c], o.resolution, q + 2 * (size_t)(v - ci->v_begin), uv_new + 2 * (size_t)v);
+        if (xf) {
+            xf[c] = chart_transform(&P, ci, &best_pl[c], g, mjx, mjy);
+            xf[c].tx += u0;
+            xf[c].ty += v0;
+        }
+        for (int v = ci->v_begin; v < ci->v_end; v++) {
+            double *out = uv_new + 2 * (size_t)v;
+            chart_place_uv(&best_pl[c], o.resolution, q + 2 * (size_t)(v - ci->v_begin), out);
+            out[0] += u0;
+            out[1] += v0;
+        }
     }
     st = mesh_set_uv(m, nuv_new, uv_new, new_tri_uv);
     if (st != NEUV_OK) goto done;
@@ -663,14 +804,16 @@ neuv_status atlas_pack(neuv_mesh *m, const int *face_chart, int ncharts,
             const int *t = m->tri_uv + 3 * f;
             a += fabs(tri_area_2d(m->uv + 2 * t[0], m->uv + 2 * t[1], m->uv + 2 * t[2]));
         }
-        res->efficiency = a;
+        res->efficiency = a / ntiles;
         res->texel_scale = a3 > 0 ? o.resolution * sqrt(a / a3) : 0;
         res->attempts = attempts;
+        res->tiles = ntiles;
     }
 done:
     if (cache.t) pack_cache_reset(&cache, 0);
     mem_free(cache.t);
     pack_ctx_free(&P);
     mem_free(new_tri_uv); mem_free(old_of_new); mem_free(pl); mem_free(best_pl); mem_free(uv_new); mem_free(q);
+    mem_free(tile);
     return st;
 }

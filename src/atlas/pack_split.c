@@ -71,6 +71,7 @@ static neuv_status trial_pack(const neuv_mesh *m, const int *face_chart, int n_c
     if (!c) return error_nomem("trial packing");
     atlas_pack_options q = *po;
     q.quick = 1;
+    q.texels_per_unit = 0; /* the trials compare chart sets by how well they fill one square */
     /* A quarter of the atlas side: the trials compare chart sets, and a
      * packing costs about the square of the side. */
     if (q.resolution > TRIAL_RESOLUTION) {

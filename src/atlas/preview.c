@@ -90,8 +90,36 @@ static void owner_pixel(void *user, int x, int y, const double b[3])
     ff->p->owner[(size_t)y * ff->p->img->w + x] = ff->face;
 }
 
-/* The UV picture: the view is the unit square when the UVs lie in it,
- * otherwise the square around their bounding box (and the unit square). */
+/* UVs in UDIM tiles (texels per unit: every face within one unit square of
+ * [0,10]^2): the occupied tiles, as bits u0 + 10 v0 of tiles[100]; 0 when
+ * the UVs are not laid out so. */
+static int uv_tile_cells(const neuv_mesh *m, unsigned char tiles[100])
+{
+    memset(tiles, 0, 100);
+    int n = 0;
+    for (int f = 0; f < m->nf; f++) {
+        int cell[2];
+        for (int d = 0; d < 2; d++) {
+            double lo = INFINITY, hi = -INFINITY;
+            for (int c = 0; c < 3; c++) {
+                double x = m->uv[2 * m->tri_uv[3 * f + c] + d];
+                lo = fmin(lo, x);
+                hi = fmax(hi, x);
+            }
+            double mid = floor(0.5 * (lo + hi));
+            if (!(mid >= 0 && mid < 10) || lo < mid - 1e-9 || hi > mid + 1 + 1e-9) return 0;
+            cell[d] = (int)mid;
+        }
+        unsigned char *t = &tiles[cell[0] + 10 * cell[1]];
+        n += !*t;
+        *t = 1;
+    }
+    return n;
+}
+
+/* The UV picture: the view is the unit square when the UVs lie in it, the
+ * tiles side by side when they lie in UDIM tiles, otherwise the square
+ * around their bounding box (and the unit square). */
 static neuv_status write_uv_png(const neuv_mesh *m, const char *path, preview_color color, int S)
 {
     static const uint8_t outside[3] = {52, 54, 60}, inside[3] = {250, 250, 250};
@@ -114,12 +142,28 @@ static neuv_status write_uv_png(const neuv_mesh *m, const char *path, preview_co
                 lo[d] = fmin(lo[d], m->uv[2 * u + d]);
                 hi[d] = fmax(hi[d], m->uv[2 * u + d]);
             }
+    unsigned char tiles[100];
+    int ntiles = uv_tile_cells(m, tiles);
+    if (ntiles > 1 || (ntiles == 1 && !tiles[0])) {
+        lo[0] = lo[1] = 0;
+        for (int d = 0; d < 2; d++) hi[d] = ceil(hi[d] - 1e-9);
+    } else {
+        ntiles = 1;
+        memset(tiles, 0, sizeof tiles);
+        tiles[0] = 1;
+    }
     double ext = fmax(hi[0] - lo[0], hi[1] - lo[1]);
     if (!(ext > 0)) ext = 1;
     double scale = S / ext;
-    /* The unit square in white so the atlas's free space shows. */
-    raster_fill_rect(&img, (int)lround((0 - lo[0]) * scale), (int)lround(S - (1 - lo[1]) * scale),
-                     (int)lround((1 - lo[0]) * scale), (int)lround(S - (0 - lo[1]) * scale), inside);
+    /* The unit square (or each tile, a pixel apart) in white so the atlas's free space shows. */
+    int gap = ntiles > 1 ? 1 : 0;
+    for (int k = 0; k < 100; k++)
+        if (tiles[k]) {
+            double u0 = k % 10, v0 = k / 10;
+            raster_fill_rect(&img, (int)lround((u0 - lo[0]) * scale) + gap, (int)lround(S - (v0 + 1 - lo[1]) * scale) + gap,
+                             (int)lround((u0 + 1 - lo[0]) * scale) - gap, (int)lround(S - (v0 - lo[1]) * scale) - gap,
+                             inside);
+        }
 
     /* Flipped faces: orientation against the area-weighted majority of the chart. */
     for (int f = 0; f < m->nf; f++) chart_sign[chart[f]] += uv_signed_area(m, f);

@@ -1,6 +1,8 @@
 /* Pictures users judge UV maps by (PNG).
  *   PREFIX-uv.png      the atlas square: charts filled in their own colours,
- *                      edges drawn, flipped faces red, overlaps highlighted
+ *                      edges drawn, flipped faces red, overlaps highlighted;
+ *                      UVs in UDIM tiles (texels per unit) show the tiles
+ *                      side by side, each in white
  *   PREFIX-checker.png the mesh rendered with a checkerboard through its UVs
  *                      from four views (front, back, left, top) */
 #ifndef NEUV_ATLAS_PREVIEW_H

@@ -52,6 +52,11 @@ int cli_parse_preset(const char *s, neuv_preset *out);
  * NULL (the library ran out of memory): the error, and 1. */
 int cli_print_document(char *json);
 
+/* For UVs in several UDIM tiles (texels per unit): one line with each tile's
+ * efficiency and chart count; nothing for one square. Returns 0 or, on
+ * failure, the exit code after the message. */
+int cli_print_tiles(const char *what, const neuv_mesh *m);
+
 /* Writes text and a newline to path atomically; returns 0 or the exit code
  * (after printing the error). */
 int cli_write_text(const char *path, const char *text);

@@ -242,3 +242,20 @@ int cli_print_document(char *json)
     neuv_free(json);
     return 0;
 }
+
+int cli_print_tiles(const char *what, const neuv_mesh *m)
+{
+    neuv_uv_tile *tiles = NULL;
+    int n = 0;
+    neuv_status st = neuv_uv_tiles(m, &tiles, &n);
+    if (st != NEUV_OK) return cli_fail(what, st);
+    if (n > 1 || (n == 1 && tiles[0].udim != 1001)) {
+        printf("  %d UDIM tiles:", n);
+        for (int i = 0; i < n; i++)
+            printf("%s %d efficiency %.3f (%d charts)", i ? "," : "", tiles[i].udim, tiles[i].efficiency,
+                   tiles[i].charts);
+        printf("\n");
+    }
+    neuv_free(tiles);
+    return 0;
+}

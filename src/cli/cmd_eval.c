@@ -13,6 +13,25 @@ static void print_number(const char *name, double x, const char *note)
     else printf("  %-20s %-14.6g %s\n", name, x, note);
 }
 
+/* UVs laid out in several UDIM tiles: each tile's efficiency (packing_efficiency covers [0,1]^2 only). */
+static int print_tiles(const char *path, const neuv_mesh *m)
+{
+    neuv_uv_tile *tiles = NULL;
+    int n = 0;
+    neuv_status st = neuv_uv_tiles(m, &tiles, &n);
+    if (st != NEUV_OK) return cli_fail(path, st);
+    if (n > 1 || (n == 1 && tiles[0].udim != 1001)) {
+        double area = 0;
+        for (int i = 0; i < n; i++) area += tiles[i].efficiency;
+        printf("  %-20s %-14d UDIM tiles, mean efficiency %.6g\n", "tiles", n, area / n);
+        for (int i = 0; i < n; i++)
+            printf("    %-18d %-14.6g efficiency, %d charts, %d faces\n", tiles[i].udim, tiles[i].efficiency,
+                   tiles[i].charts, tiles[i].faces);
+    }
+    neuv_free(tiles);
+    return 0;
+}
+
 static void print_table(const char *path, const neuv_mesh *m, const neuv_metrics *mt)
 {
     printf("%s: %d vertices, %d faces\n", path, neuv_mesh_vertex_count(m), neuv_mesh_face_count(m));
@@ -83,7 +102,7 @@ int cmd_eval(int argc, char **argv)
     st = neuv_mesh_weld(m, NULL);
     if (st == NEUV_OK) st = neuv_evaluate(m, cli_callbacks(), &mt);
     if (st != NEUV_OK) { neuv_mesh_free(m); return cli_fail(in, st); }
-    int rc = json ? print_json(in, m, &mt) : (print_table(in, m, &mt), 0);
+    int rc = json ? print_json(in, m, &mt) : (print_table(in, m, &mt), print_tiles(in, m));
     if (rc == 0 && preview) {
         st = neuv_write_preview(m, preview, color, cli_callbacks());
         if (st != NEUV_OK) rc = cli_fail(preview, st);

@@ -14,8 +14,7 @@ static const char *usage_text =
     "                   [--resolution PX] [--padding PX] [--allow-overlaps] [--no-cache] [--quiet]\n"
     "                   [--save-model M.neuv] [--model M.neuv [--finetune N] [--check-inference] [--lscm-baseline]\n"
     "                   [--shared-layer]] [--train-faces N] [--max-memory MIB] [--seam-angle DEG]\n"
-    "                   [--uv-channel 0|1]\n"
-    "                   [--no-hard-edges]\n";
+    "                   [--uv-channel 0|1] [--no-hard-edges] [--texels-per-unit T]\n";
 
 /* Above this many faces the networks train on a simplified copy and the model
  * is applied to the full mesh. Measured (bench/bench_train_faces.sh,
@@ -55,7 +54,7 @@ int cmd_unwrap(int argc, char **argv)
     int seed = -1, bad = 0, finetune = 0, refine = -1;
     /* The options a model cannot take, when given (their values may be the defaults). */
     int max_distortion_given = 0, iters_given = 0, resolution_given = 0, padding_given = 0, train_faces_given = 0;
-    int max_memory_given = 0, seam_angle_given = 0, hard_edges_given = 0;
+    int max_memory_given = 0, seam_angle_given = 0, hard_edges_given = 0, texels_given = 0;
     job.train_faces = DEFAULT_TRAIN_FACES;
     for (int i = 1; i < argc && !bad; i++) {
         if (cli_arg_global(argc, argv, &i, &bad)) continue;
@@ -79,6 +78,7 @@ int cmd_unwrap(int argc, char **argv)
         if (cli_arg_int(argc, argv, &i, "--max-memory", &o.max_memory_mb, &bad)) { max_memory_given = 1; continue; }
         if (cli_arg_double(argc, argv, &i, "--seam-angle", &o.seam_angle, &bad)) { seam_angle_given = 1; continue; }
         if (cli_arg_int(argc, argv, &i, "--uv-channel", &job.uv_channel, &bad)) continue;
+        if (cli_arg_double(argc, argv, &i, "--texels-per-unit", &o.texels_per_unit, &bad)) { texels_given = 1; continue; }
         if (!strcmp(argv[i], "--check-inference")) { job.check_inference = 1; continue; }
         if (!strcmp(argv[i], "--lscm-baseline")) { job.lscm_baseline = 1; continue; }
         if (!strcmp(argv[i], "--shared-layer")) { job.shared_layer = 1; continue; }
@@ -122,6 +122,12 @@ int cmd_unwrap(int argc, char **argv)
         return cli_error(NULL, "--seam-angle must be an angle in degrees between 0 and 180 (exclusive)");
     if (job.uv_channel != 0 && job.uv_channel != 1)
         return cli_error(NULL, "--uv-channel must be 0 (the atlas replaces the UVs) or 1 (the atlas as a second UV set)");
+    if (texels_given && !(o.texels_per_unit > 0))
+        return cli_error(NULL, "--texels-per-unit must be a number of pixels per unit of surface length above 0, got %g",
+                         o.texels_per_unit);
+    if (texels_given && job.save_model)
+        return cli_error(NULL, "--texels-per-unit cannot be used with --save-model: a model records its layout in one "
+                               "square, not in tiles");
     if (finetune < 0 || finetune > 1000000) return cli_error(NULL, "--finetune must be a step count in 0..1000000");
     if (finetune > 0 && !job.model) return cli_error(NULL, "--finetune needs --model");
     job.finetune = finetune;
@@ -155,6 +161,8 @@ int cmd_unwrap(int argc, char **argv)
                                  "which does not record seams yet"
             : hard_edges_given ? "--no-hard-edges cannot be used with --model: the charts come from the model, "
                                  "and the file's hard edges are left out anyway (counted in the report)"
+            : texels_given ? "--texels-per-unit cannot be used with --model: the charts go where the model's "
+                             "layout, one square, has them"
             : NULL;
         if (refused) return cli_error(job.model, "%s", refused);
         job.refine = refine;

@@ -8,22 +8,27 @@
 
 /* The library names the options of neuv_apply_options as the struct does;
  * its one-line message with each name as the flag the user typed. */
-static void apply_error_in_flags(const char *msg, char *out, size_t n)
+static const char *const apply_names[][2] = {
+    {"allow_overlaps", "--allow-overlaps"}, {"check_inference", "--check-inference"},
+    {"lscm_baseline", "--lscm-baseline"},   {"shared_layer", "--shared-layer"},
+    {"keep_model", "--save-model"},         {"finetune", "--finetune"},
+    {"refine", "--refine"},                 {"resolution", "--resolution"},
+    {"padding", "--padding"},
+};
+/* Training's messages name few fields; only these read as flags there. */
+static const char *const train_names[][2] = {
+    {"texels_per_unit", "--texels-per-unit"}, {"keep_model", "--save-model"},
+};
+
+static void error_in_flags(const char *msg, const char *const (*names)[2], size_t n_names, char *out, size_t n)
 {
-    static const char *const names[][2] = {
-        {"allow_overlaps", "--allow-overlaps"}, {"check_inference", "--check-inference"},
-        {"lscm_baseline", "--lscm-baseline"},   {"shared_layer", "--shared-layer"},
-        {"keep_model", "--save-model"},         {"finetune", "--finetune"},
-        {"refine", "--refine"},                 {"resolution", "--resolution"},
-        {"padding", "--padding"},
-    };
     size_t used = 0;
     const char *p = msg;
     while (*p && used + 1 < n) {
         const char *flag = NULL;
         size_t len = 0;
         int starts = p == msg || !(isalnum((unsigned char)p[-1]) || strchr("_.-/", p[-1]));
-        for (size_t k = 0; starts && !flag && k < sizeof names / sizeof names[0]; k++) {
+        for (size_t k = 0; starts && !flag && k < n_names; k++) {
             len = strlen(names[k][0]);
             if (!strncmp(p, names[k][0], len) && !isalnum((unsigned char)p[len]) && p[len] != '_') flag = names[k][1];
         }
@@ -64,7 +69,7 @@ static int apply_model(neuv_atlas *atlas, const neuv_unwrap_options *opts, const
     neuv_model_free(model);
     if (s == NEUV_ERR_INPUT) {
         char msg[768];
-        apply_error_in_flags(neuv_last_error(), msg, sizeof msg);
+        error_in_flags(neuv_last_error(), apply_names, sizeof apply_names / sizeof apply_names[0], msg, sizeof msg);
         return cli_error(job->model, "%s", msg);
     }
     if (s != NEUV_OK) return cli_fail(job->input_name, s);
@@ -83,6 +88,11 @@ static int train(neuv_atlas *atlas, const neuv_unwrap_options *opts, const unwra
     o.keep_model = job->save_model != NULL;
     o.train_faces = job->train_faces;
     neuv_status s = neuv_atlas_generate(atlas, &o);
+    if (s == NEUV_ERR_INPUT) {
+        char msg[768];
+        error_in_flags(neuv_last_error(), train_names, sizeof train_names / sizeof train_names[0], msg, sizeof msg);
+        return cli_error(job->input_name, "%s", msg);
+    }
     if (s != NEUV_OK) return cli_fail(job->input_name, s);
     if (!job->save_model) return 0;
     neuv_model *model = NULL;
@@ -134,9 +144,22 @@ static int write_outputs(neuv_atlas *atlas, const neuv_mesh *input, const unwrap
         if (rep.moved_charts > 0 && !rep.trained_on_copy) /* a copy's layout is nobody's texture */
             snprintf(moved, sizeof moved, ", %d chart%s moved from the model's layout", rep.moved_charts,
                      rep.moved_charts == 1 ? "" : "s");
-        printf("%s: %d charts (%s)%s, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f, %.1f s -> %s\n",
+        /* In tiles the metric's packing_efficiency (UV area in [0,1]^2) is undefined: the mean over the tiles. */
+        neuv_uv_tile *tiles = NULL;
+        int ntiles = 0;
+        if ((s = neuv_uv_tiles(out, &tiles, &ntiles)) != NEUV_OK) { neuv_free(json); return cli_fail(job->input_name, s); }
+        double packing = mt->packing_efficiency;
+        char tiled[48] = "";
+        if (ntiles > 1 || (ntiles == 1 && tiles[0].udim != 1001)) {
+            packing = 0;
+            for (int i = 0; i < ntiles; i++) packing += tiles[i].efficiency / ntiles;
+            snprintf(tiled, sizeof tiled, " over %d tiles", ntiles);
+        }
+        neuv_free(tiles);
+        printf("%s: %d charts (%s)%s, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f%s, %.1f s -> %s\n",
                job->input_name, rep.charts, sources, moved, mt->qce_mean, mt->flipped, mt->overlap_fraction,
-               mt->packing_efficiency, job->load_seconds + rep.seconds_total + export_seconds, job->output);
+               packing, tiled, job->load_seconds + rep.seconds_total + export_seconds, job->output);
+        if (ntiles > 1 && cli_print_tiles(job->input_name, out)) { neuv_free(json); return 2; }
         if (rep.repairs > 0) printf("  %d repairs (listed in the report)\n", rep.repairs);
         if (rep.seam_edges > 0)
             printf("  %d required seam edges (the report's seams), %d crossed\n", rep.seam_edges, rep.seams_crossed);

@@ -13,9 +13,7 @@
 
 /* Faces below this share of the mean 3D area are left out of everything;
  * UV triangles below this share of the mean UV area count as degenerate. */
-#define UV_METRICS_AREA_EPS 1e-12
 #define UV_METRICS_RASTER 2048
-#define UV_METRICS_UNIT_TOL 1e-9
 
 double uv_jacobian_singular_values(const double p[3][3], const double q[3][2], double s[2])
 {

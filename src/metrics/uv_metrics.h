@@ -7,6 +7,11 @@
 #include "mesh/mesh.h"
 #include "core/json_writer.h"
 
+/* Faces with 3D area below this times the mean are left out of every metric. */
+#define UV_METRICS_AREA_EPS 1e-12
+/* How far a UV may lie outside its unit square (or tile) and still count as inside. */
+#define UV_METRICS_UNIT_TOL 1e-9
+
 typedef struct uv_metrics {
     int charts;
     double qce_mean, qce_p95, qce_max;

@@ -716,6 +716,8 @@ static neuv_status pack_afresh(struct neuv_unwrap_result *r)
     atlas_pack_options_default(&pk);
     pk.resolution = o->resolution;
     pk.padding = o->padding;
+    /* Pixels per unit of the mesh as packed: its positions may be scaled by 2^pos_exp. */
+    pk.texels_per_unit = ldexp(o->texels_per_unit, -r->pos_exp);
     s = atlas_pack(m, r->face_chart, r->n_charts, &pk, r->transforms, &r->pack);
     unwrap_stage_time(r, STAGE_PACK, t);
     return s;
@@ -815,6 +817,16 @@ neuv_status unwrap_result_new(const neuv_unwrap_options *opts, struct neuv_unwra
     if (pad < 0 || pad > res / 8) {
         mem_free(r);
         return error_set(NEUV_ERR_INPUT, "the padding must be in 0..resolution/8 = 0..%d pixels (got %d)", res / 8, pad);
+    }
+    double tpu = r->opts.texels_per_unit;
+    if (!(tpu >= 0) || !isfinite(tpu)) {
+        mem_free(r);
+        return error_set(NEUV_ERR_INPUT, "texels_per_unit must be a finite number >= 0 (0: off), got %g", tpu);
+    }
+    if (tpu > 0 && r->opts.keep_model) {
+        mem_free(r);
+        return error_set(NEUV_ERR_INPUT, "texels_per_unit cannot be used with keep_model: a model records a layout "
+                                         "in one square, not in tiles");
     }
     nn_set_threads(r->opts.threads);
     r->model.label_agreement = -1;

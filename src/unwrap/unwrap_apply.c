@@ -1371,12 +1371,13 @@ neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *md, const un
 {
     *out = NULL;
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
-    unwrap_apply_options def = {0, 1, 0, 0, 0};
+    unwrap_apply_options def = {0, 1, 0, 0, 0, 0};
     if (!o) o = &def;
     neuv_unwrap_options opts;
     opts_from_model(&opts, md);
     opts.threads = o->threads;
     opts.use_cache = o->use_cache;
+    if (o->refine_on_mesh) opts.texels_per_unit = o->texels_per_unit;
     struct neuv_unwrap_result *r = NULL;
     neuv_status s = unwrap_result_new(&opts, &r);
     if (s != NEUV_OK) return s;
@@ -1400,6 +1401,9 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
         if (s) { neuv_unwrap_result_free(*out); *out = NULL; }
         return s;
     }
+    if (model_out && opts && opts->texels_per_unit > 0)
+        return error_set(NEUV_ERR_INPUT, "texels_per_unit cannot be used with keep_model: a model records a layout "
+                                         "in one square, not in tiles");
     if (opts && (opts->seam_angle != 0 || opts->seam_edge_count != 0))
         return error_set(NEUV_ERR_INPUT, "required seams (--seam-angle) need the networks trained on this mesh, "
                                          "not on a simplified copy: it has %d faces, over train_faces %d "
@@ -1415,7 +1419,13 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
     if (s) return s;
     log_message(NEUV_LOG_INFO, "training on a simplified copy: %d of %d faces", small->nf, mesh->nf);
     neuv_unwrap_result *tr = NULL;
-    s = unwrap_train(small, opts, 1, &tr);
+    /* The copy's layout is nobody's texture, and its model carries one square:
+     * the texel density is the full mesh's packing's. */
+    neuv_unwrap_options copy_opts;
+    if (opts) copy_opts = *opts;
+    else neuv_unwrap_options_init(&copy_opts);
+    copy_opts.texels_per_unit = 0;
+    s = unwrap_train(small, &copy_opts, 1, &tr);
     int small_faces = small->nf;
     mesh_free(small);
     if (s) return s;
@@ -1423,12 +1433,14 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
     s = unwrap_model_from_result(tr, &md);
     double train_seconds = now_seconds() - t;
     if (s == NEUV_OK) {
-        unwrap_apply_options ao = {opts ? opts->threads : 0, opts ? opts->use_cache : 1, 0, 1, 0};
+        unwrap_apply_options ao = {opts ? opts->threads : 0, opts ? opts->use_cache : 1, 0, 1, 0,
+                                   opts ? opts->texels_per_unit : 0};
         s = unwrap_apply(mesh, md, &ao, out);
     }
     if (s == NEUV_OK) {
         struct neuv_unwrap_result *r = *out;
         r->opts = tr->opts;
+        r->opts.texels_per_unit = opts ? opts->texels_per_unit : 0;
         r->model.trained_on_copy = 1;
         r->model.train_faces = small_faces;
         r->model.train_seconds = train_seconds;

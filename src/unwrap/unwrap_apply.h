@@ -64,6 +64,7 @@ typedef struct unwrap_apply_options {
                            * 0: carry the source's refinement over, so the atlas is the source's */
     int lscm_baseline;    /* 1: a baseline, not the model's map: each chart flattened by LSCM on this
                            * mesh and placed by the least-squares similarity onto the model's map */
+    double texels_per_unit; /* with refine_on_mesh (the fresh packing): as neuv_unwrap_options' (0: off) */
 } unwrap_apply_options;
 
 /* Inputs:  mesh  any triangulation of the model's source surface (cleaned on a copy)

@@ -8,6 +8,7 @@
 #include "core/json_writer.h"
 #include "core/mem.h"
 #include "metrics/uv_metrics.h"
+#include "metrics/uv_tiles.h"
 #include "unwrap/unwrap_internal.h"
 
 static const char *method_name(neuv_method m)
@@ -255,9 +256,18 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "resolution"); json_int(&w, r->opts.resolution);
     json_key(&w, "padding"); json_int(&w, r->opts.padding);
     json_key(&w, "efficiency"); json_number(&w, r->pack.efficiency);
+    json_key(&w, "texels_per_unit"); json_number(&w, r->opts.texels_per_unit);
     json_key(&w, "split_charts"); json_int(&w, r->pack_splits);
     json_key(&w, "split_trials"); json_int(&w, r->pack_split_trials);
     json_end_object(&w);
+
+    /* The tiles of the written atlas (one, 1001, without texels_per_unit). */
+    neuv_uv_tile *tiles = NULL;
+    int ntiles = 0;
+    if (uv_tiles_compute(r->mesh, &tiles, &ntiles) != NEUV_OK) w.failed = 1;
+    json_key(&w, "tiles");
+    uv_tiles_write_json(tiles, ntiles, &w);
+    mem_free(tiles);
 
     json_key(&w, "seams");
     json_begin_object(&w);
