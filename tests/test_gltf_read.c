@@ -4,6 +4,7 @@
  * same geometry as a .glb; the scene choice; and each refused construct with
  * its message. */
 #include "check.h"
+#include "load_checked.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -43,15 +44,6 @@ static char *gltf_json(const char *buffer_entry, const char *mesh_extra, const c
              "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},\"indices\":2,\"mode\":5}%s]}]}",
              rest, buffer_entry, "", mesh_extra);
     return text;
-}
-
-static neuv_mesh *load(const char *path)
-{
-    neuv_mesh *m = NULL;
-    neuv_status s = neuv_mesh_load(path, NULL, &m);
-    if (s != NEUV_OK) fprintf(stderr, "%s: %s\n", path, neuv_last_error());
-    CHECK(s == NEUV_OK && m);
-    return m;
 }
 
 /* Vertex `base + i` is A * P[i] + t, with A = a * (rotation by `turn` quarter

@@ -7,6 +7,7 @@
  * (attr->nuv0), glTF TEXCOORD_0 and the PLY first pair are that set bit for
  * bit and TEXCOORD_1 / the second pair the atlas. */
 #include "check.h"
+#include "load_checked.h"
 
 #include <stdint.h>
 
@@ -15,15 +16,6 @@
 #include "io/mesh_io.h"
 #include "mesh/mesh.h"
 #include "mesh/mesh_attributes.h"
-
-static neuv_mesh *load(const char *path)
-{
-    neuv_mesh *m = NULL;
-    neuv_status s = neuv_mesh_load(path, NULL, &m);
-    if (s != NEUV_OK) fprintf(stderr, "%s: %s\n", path, neuv_last_error());
-    CHECK(s == NEUV_OK && m);
-    return m;
-}
 
 static char *slurp(const char *path, size_t *len)
 {

@@ -215,6 +215,21 @@ static void check_layout(const neuv_mesh *m, const int *fc, int S, double pad_su
 }
 
 /* Everything the packer promises, on one mesh. */
+/* The largest distance between a packed UV of m and its chart's stored
+ * transform applied to the same corner's UV in orig. */
+static double transform_error(const neuv_mesh *m, const neuv_mesh *orig, const int *fc, const atlas_chart_transform *xf)
+{
+    double err = 0;
+    for (int f = 0; f < m->nf; f++)
+        for (int k = 0; k < 3; k++) {
+            double out[2];
+            atlas_chart_transform_apply(&xf[fc[f]], orig->uv + 2 * orig->tri_uv[3 * f + k], out);
+            const double *nu = m->uv + 2 * m->tri_uv[3 * f + k];
+            err = fmax(err, fmax(fabs(out[0] - nu[0]), fabs(out[1] - nu[1])));
+        }
+    return err;
+}
+
 static double check_pack(const char *name, neuv_mesh *m, int resolution, int padding, double min_eff)
 {
     int *fc = malloc(sizeof(int) * m->nf);
@@ -249,14 +264,7 @@ static double check_pack(const char *name, neuv_mesh *m, int resolution, int pad
     CHECK(worst <= 1e-6);
 
     /* The stored transform reproduces the UVs from the original ones. */
-    double err = 0;
-    for (int f = 0; f < m->nf; f++)
-        for (int k = 0; k < 3; k++) {
-            double out[2];
-            atlas_chart_transform_apply(&xf[fc[f]], orig->uv + 2 * orig->tri_uv[3 * f + k], out);
-            const double *nu = m->uv + 2 * m->tri_uv[3 * f + k];
-            err = fmax(err, fmax(fabs(out[0] - nu[0]), fabs(out[1] - nu[1])));
-        }
+    double err = transform_error(m, orig, fc, xf);
     CHECK(err <= 1e-9);
 
     long overlaps, close;
@@ -454,16 +462,10 @@ static void test_tiles(void)
 
     /* A similarity per chart, the tile offset in its transform. */
     chart_qce(m, fc, nc, q1);
-    double worst = 0, err = 0;
+    double worst = 0;
     for (int c = 0; c < nc; c++) worst = fmax(worst, fabs(q1[c] - q0[c]));
     CHECK(worst <= 1e-6);
-    for (int f = 0; f < m->nf; f++)
-        for (int k = 0; k < 3; k++) {
-            double out[2];
-            atlas_chart_transform_apply(&xf[fc[f]], orig->uv + 2 * orig->tri_uv[3 * f + k], out);
-            const double *nu = m->uv + 2 * m->tri_uv[3 * f + k];
-            err = fmax(err, fmax(fabs(out[0] - nu[0]), fabs(out[1] - nu[1])));
-        }
+    double err = transform_error(m, orig, fc, xf);
     CHECK(err <= 1e-9);
 
     /* Deterministic. */
