@@ -156,8 +156,8 @@ static int write_outputs(neuv_atlas *atlas, const neuv_mesh *input, const unwrap
             snprintf(tiled, sizeof tiled, " over %d tiles", ntiles);
         }
         neuv_free(tiles);
-        printf("%s: %d charts (%s)%s, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f%s, %.1f s -> %s\n",
-               job->input_name, rep.charts, sources, moved, mt->qce_mean, mt->flipped, mt->overlap_fraction,
+        printf("%s: %d chart%s (%s)%s, qce_mean %.4f, flipped %d, overlap %.4g, packing %.3f%s, %.1f s -> %s\n",
+               job->input_name, rep.charts, rep.charts == 1 ? "" : "s", sources, moved, mt->qce_mean, mt->flipped, mt->overlap_fraction,
                packing, tiled, job->load_seconds + rep.seconds_total + export_seconds, job->output);
         if (ntiles > 1 && cli_print_tiles(job->input_name, out)) { neuv_free(json); return 2; }
         if (rep.repairs > 0) printf("  %d repairs (listed in the report)\n", rep.repairs);
