@@ -24,6 +24,8 @@
 #error "define FUZZ_READER_OBJ, FUZZ_READER_OFF or FUZZ_READER_PLY"
 #endif
 
+static neuv_status write_glb(const neuv_mesh *m, FILE *fp) { return io_write_gltf(m, fp, 1); }
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (size == 0 || (TEXT && memchr(data, '\0', size))) return 0;
@@ -31,8 +33,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (!text) return 0;
     neuv_mesh *m = NULL;
     neuv_status s = READ(text, size, &m);
-    if (s == NEUV_OK) fuzz_check_mesh(m);
-    else fuzz_check_failure(s, m);
+    if (s == NEUV_OK) {
+        fuzz_check_mesh(m);
+        /* What was read goes back out: OBJ keeps vertices and faces (and
+         * reads back), PLY splits vertices at seams (faces kept, read back),
+         * glTF is written only. */
+        fuzz_check_write_back(m, io_write_obj, io_read_obj, 1);
+        fuzz_check_write_back(m, io_write_ply, io_read_ply, 0);
+        fuzz_check_write_back(m, write_glb, NULL, 0);
+    } else {
+        fuzz_check_failure(s, m);
+    }
     mesh_free(m);
     free(text);
     return 0;
