@@ -6,6 +6,7 @@
  * copies), the UV pair under the file's names. With attr->nuv0 > 0 the
  * first pair is the kept set and the atlas is the second, named as the
  * first with a "1" appended (s1 t1, u1 v1). */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -54,6 +55,15 @@ static double color_scale(int t)
 {
     static const double max[] = {1, 127, 255, 32767, 65535, 2147483647.0, 4294967295.0};
     return t >= PLY_I8 && t <= PLY_U32 ? max[t] : 1;
+}
+
+/* PLY_F32 when every value of x[0..n) is a finite float or not finite at
+ * all, else PLY_F64: a UV of 1e60 written as float would read back as inf. */
+static int float_or_double(const double *x, size_t n)
+{
+    for (size_t i = 0; x && i < n; i++)
+        if (isfinite(x[i]) && fabs(x[i]) > FLT_MAX) return PLY_F64;
+    return PLY_F32;
 }
 
 static int name_taken(const char *name, const char *const *taken, int n)
@@ -121,20 +131,26 @@ neuv_status io_write_ply(const neuv_mesh *m, FILE *fp)
     const double *first = sp.uv0 ? sp.uv0 : sp.uv, *second = sp.uv0 ? sp.uv : NULL;
 
     fprintf(fp, "ply\nformat binary_little_endian 1.0\ncomment neuv %s\n", neuv_version());
-    /* double positions so a round trip is exact; float UVs and normals as other tools expect. */
+    /* double positions so a round trip is exact; float UVs and normals as other tools expect
+     * (double where a value is beyond float's range). */
     fprintf(fp, "element vertex %d\nproperty double x\nproperty double y\nproperty double z\n", sp.nv);
     const char *taken[16] = {"x", "y", "z"};
     int ntaken = 3;
+    int normal_type = float_or_double(sp.normal, 3 * (size_t)sp.nv);
+    int first_type = float_or_double(first, 2 * (size_t)sp.nv), second_type = float_or_double(second, 2 * (size_t)sp.nv);
     if (sp.normal) {
-        fprintf(fp, "property float nx\nproperty float ny\nproperty float nz\n");
+        fprintf(fp, "property %s nx\nproperty %s ny\nproperty %s nz\n", type_name(normal_type),
+                type_name(normal_type), type_name(normal_type));
         taken[ntaken++] = "nx"; taken[ntaken++] = "ny"; taken[ntaken++] = "nz";
     }
     if (first) {
-        fprintf(fp, "property float %s\nproperty float %s\n", uv_name[0], uv_name[1]);
+        fprintf(fp, "property %s %s\nproperty %s %s\n", type_name(first_type), uv_name[0], type_name(first_type),
+                uv_name[1]);
         taken[ntaken++] = uv_name[0]; taken[ntaken++] = uv_name[1];
     }
     if (second) {
-        fprintf(fp, "property float %s\nproperty float %s\n", uv1_name[0], uv1_name[1]);
+        fprintf(fp, "property %s %s\nproperty %s %s\n", type_name(second_type), uv1_name[0], type_name(second_type),
+                uv1_name[1]);
         taken[ntaken++] = uv1_name[0]; taken[ntaken++] = uv1_name[1];
     }
     for (int c = 0; c < channels; c++) {
@@ -171,9 +187,9 @@ neuv_status io_write_ply(const neuv_mesh *m, FILE *fp)
         const double *p = m->pos + 3 * (size_t)src;
         unsigned char *q = rec;
         for (int k = 0; k < 3; k++) q = put_f64le(q, p[k]);
-        if (sp.normal) for (int k = 0; k < 3; k++) q = put_f32le(q, (float)sp.normal[3 * (size_t)v + k]);
-        if (first) { q = put_f32le(q, (float)first[2 * (size_t)v]); q = put_f32le(q, (float)first[2 * (size_t)v + 1]); }
-        if (second) { q = put_f32le(q, (float)second[2 * (size_t)v]); q = put_f32le(q, (float)second[2 * (size_t)v + 1]); }
+        if (sp.normal) for (int k = 0; k < 3; k++) q = put_value(q, normal_type, sp.normal[3 * (size_t)v + k]);
+        for (int k = 0; first && k < 2; k++) q = put_value(q, first_type, first[2 * (size_t)v + k]);
+        for (int k = 0; second && k < 2; k++) q = put_value(q, second_type, second[2 * (size_t)v + k]);
         for (int c = 0; c < channels; c++) {
             double x = a->color[(size_t)channels * (size_t)src + (size_t)c];
             if (color_type != PLY_F32 && color_type != PLY_F64) x = (x < 0 ? 0 : x > 1 ? 1 : x) * color_scale(color_type);
