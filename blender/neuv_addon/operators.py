@@ -134,7 +134,8 @@ def object_mode(context):
 
 
 def pack_together(neuv, meshes, uvs, options):
-    """Repacks the UVs of several meshes into one square (neuv.pack on all
+    """Repacks the UVs of several meshes into one square, or into UDIM tiles
+    with texels_per_unit (neuv.pack on all
     their triangles at once, per corner). uvs: one (loop_count by 2) array
     per mesh, changed in place; triangles with a loop that has no UV
     (NaN) stay out."""
@@ -282,6 +283,10 @@ class NEUV_OT_unwrap(AtlasWriter, bpy.types.Operator):
                          description="Pixels between charts and to the border")
     use_cache: BoolProperty(name="Operator Cache", default=True,
                             description="Keep the geometry operators in neuv's on-disk cache")
+    texels_per_unit: FloatProperty(name="Texels per Unit", default=0.0, min=0.0, max=1e9,
+                                   description="Texture pixels per unit of surface length: the charts go into "
+                                               "UDIM tiles of Resolution pixels (1001, 1002, ...) as that density "
+                                               "needs; 0: one square")
     use_seams: BoolProperty(name="Keep Marked Seams", default=True,
                             description="Edges marked as seams are chart borders: no chart crosses them")
     hard_edges: BoolProperty(name="Hard Edges", default=True,
@@ -298,7 +303,7 @@ class NEUV_OT_unwrap(AtlasWriter, bpy.types.Operator):
         return bool(mesh_objects(context))
 
     def pack_options(self):
-        return {"resolution": self.resolution, "padding": self.padding}
+        return {"resolution": self.resolution, "padding": self.padding, "texels_per_unit": self.texels_per_unit}
 
     def seam_options(self, meshes):
         """seam_edges (marked seams and sharp edges, numbered across the
@@ -320,7 +325,7 @@ class NEUV_OT_unwrap(AtlasWriter, bpy.types.Operator):
         options = dict(method=self.method, preset=self.preset, charts=self.charts,
                        max_distortion=self.max_distortion, iters=self.iters, refine=self.refine,
                        seed=self.seed, resolution=self.resolution, padding=self.padding,
-                       use_cache=self.use_cache)
+                       use_cache=self.use_cache, texels_per_unit=self.texels_per_unit)
 
         def work(neuv, meshes, run):
             atlas = neuv.Atlas(progress=run)
@@ -396,6 +401,10 @@ class NEUV_OT_pack(bpy.types.Operator):
                          description="Pixels between charts and to the border")
     keep_scale: BoolProperty(name="Keep Scale", default=False,
                              description="Keep the charts' relative scales instead of matching their 3D areas")
+    texels_per_unit: FloatProperty(name="Texels per Unit", default=0.0, min=0.0, max=1e9,
+                                   description="Texture pixels per unit of surface length: the charts go into "
+                                               "UDIM tiles of Resolution pixels (1001, 1002, ...) as that density "
+                                               "needs; 0: one square")
 
     @classmethod
     def poll(cls, context):
@@ -415,7 +424,8 @@ class NEUV_OT_pack(bpy.types.Operator):
                 layers = [o.data.uv_layers.active for o in objects]
                 uvs = [m.read_uvs(layer) for m, layer in zip(meshes, layers)]
                 pack_together(neuv, meshes, uvs, {"resolution": self.resolution, "padding": self.padding,
-                                                  "keep_scale": self.keep_scale})
+                                                  "keep_scale": self.keep_scale,
+                                                  "texels_per_unit": self.texels_per_unit})
                 for m, layer, uv in zip(meshes, layers, uvs):
                     m.write_uvs(layer, uv)
                 metrics = [record_metrics(neuv, m, layer) for m, layer in zip(meshes, layers)]

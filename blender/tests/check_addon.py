@@ -16,6 +16,7 @@ import sys
 sys.dont_write_bytecode = True  # the add-on is the source tree's, through a link
 
 import json  # noqa: E402
+import math  # noqa: E402
 import os  # noqa: E402
 import subprocess  # noqa: E402
 import time  # noqa: E402
@@ -224,6 +225,37 @@ for o in objects:
     check_uvs(o, "pack")
 check(not np.allclose(before, loop_triangle_uvs(sphere, sphere.data.uv_layers["neuv"])),
       "Pack moved the charts (another padding)")
+
+# ---- Pack (neuv) at a texel density: UDIM tiles ------------------------------
+def triangle_areas_3d(obj):
+    me = obj.data
+    me.calc_loop_triangles()
+    tv = np.empty(3 * len(me.loop_triangles), np.int32)
+    me.loop_triangles.foreach_get("vertices", tv)
+    co = np.empty(3 * len(me.vertices), np.float32)
+    me.vertices.foreach_get("co", co)
+    p = co.reshape(-1, 3).astype(np.float64)[tv.reshape(-1, 3)]
+    return 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
+
+
+def density(objs):
+    """Pixels of a 512 px tile per unit of surface length, over all charts."""
+    uv_area = sum(np.abs(loop_uvs.signed_uv_areas(loop_triangle_uvs(o, o.data.uv_layers["neuv"]))).sum() for o in objs)
+    return 512 * math.sqrt(uv_area / sum(triangle_areas_3d(o).sum() for o in objs))
+
+
+T = 1.6 * density(objects)  # 2.56 times the one-square area: more than one tile
+result = bpy.ops.uv.neuv_pack(padding=4, resolution=512, texels_per_unit=T)
+check(result == {'FINISHED'}, "Pack at a texel density finished")
+tiles = set()
+for o in objects:
+    c = loop_triangle_uvs(o, o.data.uv_layers["neuv"])
+    lo, hi = np.floor(c.min(axis=1) * (1 - 1e-9)), np.floor(c.max(axis=1) * (1 - 1e-9))
+    check((lo == hi).all(), f"{o.name}: every triangle inside one UDIM tile")
+    check((loop_uvs.signed_uv_areas(c) > 0).all(), f"{o.name}: no flipped triangle in tiles")
+    tiles |= {(int(u), int(v)) for u, v in lo}
+check(len(tiles) >= 2, f"the charts fill {len(tiles)} tiles at {T:.1f} px per unit (expected 2 or more)")
+check(abs(density(objects) / T - 1) < 1e-4, f"the density is {density(objects):.3f} px per unit, asked {T:.3f}")
 
 # ---- Apply neuv model ------------------------------------------------------
 # A surface model of the sphere, saved through the package, applied by the operator.
