@@ -257,6 +257,17 @@ for o in objects:
 check(len(tiles) >= 2, f"the charts fill {len(tiles)} tiles at {T:.1f} px per unit (expected 2 or more)")
 check(abs(density(objects) / T - 1) < 1e-4, f"the density is {density(objects):.3f} px per unit, asked {T:.3f}")
 
+result = bpy.ops.uv.neuv_unwrap(method='lscm', iters=30, use_cache=False, resolution=512, texels_per_unit=T)
+check(result == {'FINISHED'}, "Neural Unwrap at a texel density finished")
+tiles = set()
+for o in objects:
+    c = loop_triangle_uvs(o, o.data.uv_layers["neuv"])
+    lo = np.floor(c.min(axis=1) * (1 - 1e-9))
+    check((lo == np.floor(c.max(axis=1) * (1 - 1e-9))).all(), f"{o.name}: unwrap: every triangle inside one tile")
+    tiles |= {(int(u), int(v)) for u, v in lo}
+check(len(tiles) >= 2, f"unwrap: the charts fill {len(tiles)} tiles at {T:.1f} px per unit")
+check(abs(density(objects) / T - 1) < 1e-4, f"unwrap: the density is {density(objects):.3f} px per unit, asked {T:.3f}")
+
 # ---- Apply neuv model ------------------------------------------------------
 # A surface model of the sphere, saved through the package, applied by the operator.
 import neuv  # noqa: E402  (on sys.path now, from the preference)
