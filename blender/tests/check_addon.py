@@ -227,14 +227,20 @@ check(not np.allclose(before, loop_triangle_uvs(sphere, sphere.data.uv_layers["n
       "Pack moved the charts (another padding)")
 
 # ---- Pack (neuv) at a texel density: UDIM tiles ------------------------------
-def triangle_areas_3d(obj):
+def positions_and_triangles(obj):
+    """(#V, 3) float32 positions and (#T, 3) vertex indices of Blender's triangulation."""
     me = obj.data
     me.calc_loop_triangles()
     tv = np.empty(3 * len(me.loop_triangles), np.int32)
     me.loop_triangles.foreach_get("vertices", tv)
     co = np.empty(3 * len(me.vertices), np.float32)
     me.vertices.foreach_get("co", co)
-    p = co.reshape(-1, 3).astype(np.float64)[tv.reshape(-1, 3)]
+    return co.reshape(-1, 3), tv.reshape(-1, 3)
+
+
+def triangle_areas_3d(obj):
+    co, tv = positions_and_triangles(obj)
+    p = co.astype(np.float64)[tv]
     return 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1)
 
 
@@ -272,15 +278,10 @@ check(abs(density(objects) / T - 1) < 1e-4, f"unwrap: the density is {density(ob
 # A surface model of the sphere, saved through the package, applied by the operator.
 import neuv  # noqa: E402  (on sys.path now, from the preference)
 
-me = sphere.data
-me.calc_loop_triangles()
-tv = np.empty(3 * len(me.loop_triangles), np.int32)
-me.loop_triangles.foreach_get("vertices", tv)
-co = np.empty(3 * len(me.vertices), np.float32)
-me.vertices.foreach_get("co", co)
+co, tv = positions_and_triangles(sphere)
 model_path = os.path.join(TMP, "sphere.neuv")
 with neuv.Atlas() as atlas:
-    atlas.add_mesh(co.reshape(-1, 3), tv.reshape(-1, 3))
+    atlas.add_mesh(co, tv)
     atlas.generate(method="lscm", iters=30, use_cache=False, keep_model=True)
     atlas.take_model().save(model_path)
 bpy.ops.object.select_all(action='DESELECT')

@@ -108,8 +108,6 @@ static char *statement_argument(const char *p)
     return attr_strndup(p, len);
 }
 
-static int same_text(const char *a, const char *b) { return a == b || (a && b && !strcmp(a, b)); }
-
 /* The OBJ grouping statements in force: `o`, `g` and `s` set one part of
  * the state; faces remember the state's index in the attributes. */
 static neuv_status set_group_part(mesh_builder *b, int part, const char *p)
@@ -122,8 +120,8 @@ static neuv_status set_group_part(mesh_builder *b, int part, const char *p)
     char **slot = part == 0 ? &now.object : part == 1 ? &now.group : &now.smooth;
     *slot = arg;
     for (int i = 0; i < a->n_groups; i++)
-        if (same_text(a->groups[i].object, now.object) && same_text(a->groups[i].group, now.group) &&
-            same_text(a->groups[i].smooth, now.smooth)) {
+        if (attr_same_text(a->groups[i].object, now.object) && attr_same_text(a->groups[i].group, now.group) &&
+            attr_same_text(a->groups[i].smooth, now.smooth)) {
             b->group = i;
             mem_free(arg);
             return NEUV_OK;

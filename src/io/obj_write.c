@@ -61,14 +61,12 @@ static void format_float_exact(char *buf, size_t n, float x)
     }
 }
 
-static int same_text(const char *a, const char *b) { return a == b || (a && b && !strcmp(a, b)); }
-
 /* The o / g / s statements that take the group state from `was` to `now`. */
 static void write_group_change(const obj_group_state *was, const obj_group_state *now, FILE *fp)
 {
-    if (now->object && !same_text(was ? was->object : NULL, now->object)) fprintf(fp, "o %s\n", now->object);
-    if (now->group && !same_text(was ? was->group : NULL, now->group)) fprintf(fp, "g %s\n", now->group);
-    if (now->smooth && !same_text(was ? was->smooth : NULL, now->smooth)) fprintf(fp, "s %s\n", now->smooth);
+    if (now->object && !attr_same_text(was ? was->object : NULL, now->object)) fprintf(fp, "o %s\n", now->object);
+    if (now->group && !attr_same_text(was ? was->group : NULL, now->group)) fprintf(fp, "g %s\n", now->group);
+    if (now->smooth && !attr_same_text(was ? was->smooth : NULL, now->smooth)) fprintf(fp, "s %s\n", now->smooth);
 }
 
 static void write_material(const neuv_mesh *m, int k, FILE *fp)

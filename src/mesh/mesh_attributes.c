@@ -121,3 +121,5 @@ void mesh_attributes_free(mesh_attributes *a)
     mem_free(a->tri_uv0);
     mem_free(a);
 }
+
+int attr_same_text(const char *a, const char *b) { return a == b || (a && b && !strcmp(a, b)); }

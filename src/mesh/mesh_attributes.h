@@ -58,6 +58,8 @@ mesh_attributes *mesh_attributes_new(void);
 mesh_attributes *mesh_attributes_clone(const mesh_attributes *a, int nv, int nf);
 void mesh_attributes_free(mesh_attributes *a);
 void ply_extra_free(ply_extra *e);
+/* Whether two optional names are equal (both NULL, or the same text). */
+int attr_same_text(const char *a, const char *b);
 /* A copy of the n bytes at s with a NUL after them; NULL on failure. */
 char *attr_strndup(const char *s, size_t n);
 
