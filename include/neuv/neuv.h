@@ -807,7 +807,9 @@ NEUV_API neuv_status neuv_mesh_jitter(neuv_mesh *mesh, unsigned long long seed, 
 
 typedef enum neuv_features {
     NEUV_FEATURES_HKS = 0,     /* heat kernel signatures (default): independent of pose and triangulation */
-    NEUV_FEATURES_XYZ = 1      /* positions */
+    NEUV_FEATURES_XYZ = 1,     /* positions */
+    NEUV_FEATURES_HKS_NORMALS = 2 /* heat kernel signatures and vertex normals: tells apart parts
+                                   * the signatures alone cannot (a cube's sides) */
 } neuv_features;
 
 typedef struct neuv_segment_options {

@@ -38,7 +38,7 @@ static neuv_status patchnet_options_of(const neuv_segment_options *o, patchnet_o
     if (o->charts < 0 || o->charts > MAX_SEGMENT_CHARTS)
         return error_set(NEUV_ERR_INPUT, "charts must be 0 (automatic) or a count in 1..%d, got %d", MAX_SEGMENT_CHARTS,
                          o->charts);
-    if (o->features != NEUV_FEATURES_HKS && o->features != NEUV_FEATURES_XYZ)
+    if (o->features != NEUV_FEATURES_HKS && o->features != NEUV_FEATURES_XYZ && o->features != NEUV_FEATURES_HKS_NORMALS)
         return error_set(NEUV_ERR_INPUT, "unknown features %d", (int)o->features);
     if (!(o->max_distortion > 1)) return error_set(NEUV_ERR_INPUT, "max_distortion must be above 1, got %g", o->max_distortion);
     if (o->iters < 0) return error_set(NEUV_ERR_INPUT, "iters must be 0 (the preset's) or a step count, got %d", o->iters);
@@ -47,7 +47,9 @@ static neuv_status patchnet_options_of(const neuv_segment_options *o, patchnet_o
     neuv_status s = patchnet_apply_preset(po, o->preset == NEUV_PRESET_PAPER ? "paper" : "fast");
     if (s != NEUV_OK) return s;
     po->charts = o->charts;
-    po->features = o->features == NEUV_FEATURES_XYZ ? DIFFUSION_NET_XYZ : DIFFUSION_NET_HKS;
+    po->features = o->features == NEUV_FEATURES_XYZ           ? DIFFUSION_NET_XYZ
+                   : o->features == NEUV_FEATURES_HKS_NORMALS ? DIFFUSION_NET_HKS_NORMALS
+                                                              : DIFFUSION_NET_HKS;
     po->max_distortion = o->max_distortion;
     po->seed = (uint64_t)o->seed;
     if (o->iters > 0) po->iters = o->iters;
@@ -129,7 +131,9 @@ char *neuv_segment_report_json(const neuv_segment_report *r, const char *input_n
     json_key(&w, "vertices"); json_int(&w, r->vertices);
     json_key(&w, "faces"); json_int(&w, r->faces);
     json_key(&w, "seed"); json_int(&w, (long long)r->seed);
-    json_key(&w, "features"); json_string(&w, r->features == NEUV_FEATURES_XYZ ? "xyz" : "hks");
+    json_key(&w, "features"); json_string(&w, r->features == NEUV_FEATURES_XYZ           ? "xyz"
+                                        : r->features == NEUV_FEATURES_HKS_NORMALS ? "hks+normals"
+                                                                                   : "hks");
     json_key(&w, "patches"); json_int(&w, r->patches);
     json_key(&w, "label_charts"); json_int(&w, r->label_charts);
     json_key(&w, "splits"); json_int(&w, r->splits);

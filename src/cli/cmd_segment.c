@@ -1,4 +1,4 @@
-/* neuv segment IN -o OUT [--charts auto|K] [--max-distortion X] [--features hks|xyz]
+/* neuv segment IN -o OUT [--charts auto|K] [--max-distortion X] [--features hks|xyz|hks+normals]
  *                 [--preset fast|paper] [--seed S] [--iters N] [--preview PREFIX]
  *                 [--no-cache] [--json]
  * PatchNet charts of a mesh: chart id per face, written as a PLY face
@@ -10,7 +10,7 @@
 #include "cli/cli.h"
 #include "cli/commands.h"
 
-#define SEGMENT_USAGE "segment IN -o OUT [--charts auto|K] [--max-distortion X] [--features hks|xyz] " \
+#define SEGMENT_USAGE "segment IN -o OUT [--charts auto|K] [--max-distortion X] [--features hks|xyz|hks+normals] " \
                       "[--preset fast|paper] [--seed S] [--iters N] [--preview PREFIX] [--no-cache] [--json]"
 
 int cmd_segment(int argc, char **argv)
@@ -51,7 +51,8 @@ int cmd_segment(int argc, char **argv)
     }
     if (!strcmp(features, "hks")) o.features = NEUV_FEATURES_HKS;
     else if (!strcmp(features, "xyz")) o.features = NEUV_FEATURES_XYZ;
-    else return cli_error(NULL, "--features expects hks or xyz, got '%s'", features);
+    else if (!strcmp(features, "hks+normals")) o.features = NEUV_FEATURES_HKS_NORMALS;
+    else return cli_error(NULL, "--features expects hks, xyz or hks+normals, got '%s'", features);
     if (!(max_distortion > 1)) return cli_error(NULL, "--max-distortion must be above 1, got %g", max_distortion);
     if (iters < 0) return cli_error(NULL, "--iters must be >= 1, got %d", iters);
     if (seed < 0) return cli_error(NULL, "--seed must be >= 0, got %d", seed);

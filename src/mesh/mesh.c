@@ -240,6 +240,22 @@ void mesh_face_normal(const neuv_mesh *m, int f, double n[3])
     if (l > 0) { n[0] /= l; n[1] /= l; n[2] /= l; }
 }
 
+void mesh_vertex_normals(const neuv_mesh *m, double *n)
+{
+    for (size_t i = 0; i < 3 * (size_t)m->nv; i++) n[i] = 0;
+    for (int f = 0; f < m->nf; f++) {
+        double fn[3], a = mesh_face_area(m, f);
+        mesh_face_normal(m, f, fn);
+        for (int k = 0; k < 3; k++)
+            for (int c = 0; c < 3; c++) n[3 * (size_t)m->tri[3 * f + k] + c] += a * fn[c];
+    }
+    for (int v = 0; v < m->nv; v++) {
+        double *p = n + 3 * (size_t)v, l = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        if (l > 0)
+            for (int c = 0; c < 3; c++) p[c] /= l;
+    }
+}
+
 double mesh_total_area(const neuv_mesh *m)
 {
     double a = 0;

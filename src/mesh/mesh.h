@@ -63,6 +63,9 @@ void mesh_free(neuv_mesh *m);
 /* Geometry helpers used everywhere. */
 double mesh_face_area(const neuv_mesh *m, int f);
 void mesh_face_normal(const neuv_mesh *m, int f, double n[3]); /* unit, zero if degenerate */
+/* Unit vertex normals: area-weighted sums of the faces' normals (zero where
+ * the sum is). n: #V by 3, caller allocates. */
+void mesh_vertex_normals(const neuv_mesh *m, double *n);
 double mesh_total_area(const neuv_mesh *m);
 void mesh_bounding_box(const neuv_mesh *m, double lo[3], double hi[3]);
 

@@ -189,14 +189,24 @@ neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *op
     *out = NULL;
     *dim = 0;
     int nv = m->nv;
-    if (f == DIFFUSION_NET_HKS) {
+    if (f == DIFFUSION_NET_HKS || f == DIFFUSION_NET_HKS_NORMALS) {
         if (!ops || !ops->hks || ops->n_hks < 1 || ops->nv != nv)
             return error_set(NEUV_ERR_INPUT, "DiffusionNet: no heat kernel signatures in the operators");
-        float *x = mem_alloc(sizeof(float) * (size_t)nv * ops->n_hks);
+        int nh = ops->n_hks, d = nh + (f == DIFFUSION_NET_HKS_NORMALS ? 3 : 0);
+        float *x = mem_alloc(sizeof(float) * (size_t)nv * d);
         if (!x) return error_nomem("HKS features");
-        for (size_t i = 0; i < (size_t)nv * ops->n_hks; i++) x[i] = (float)ops->hks[i];
+        for (int v = 0; v < nv; v++)
+            for (int i = 0; i < nh; i++) x[(size_t)v * d + i] = (float)ops->hks[(size_t)v * nh + i];
+        if (f == DIFFUSION_NET_HKS_NORMALS) {
+            double *n = mem_calloc(3 * (size_t)nv, sizeof(double));
+            if (!n) { mem_free(x); return error_nomem("normal features"); }
+            mesh_vertex_normals(m, n);
+            for (int v = 0; v < nv; v++)
+                for (int c = 0; c < 3; c++) x[(size_t)v * d + nh + c] = (float)n[3 * v + c];
+            mem_free(n);
+        }
         *out = x;
-        *dim = ops->n_hks;
+        *dim = d;
         return NEUV_OK;
     }
     if (f != DIFFUSION_NET_XYZ) return error_set(NEUV_ERR_INPUT, "DiffusionNet: unknown input features %d", (int)f);
@@ -222,4 +232,22 @@ neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *op
     *out = x;
     *dim = 3;
     return NEUV_OK;
+}
+
+const char *diffusion_net_features_name(diffusion_net_features f)
+{
+    switch (f) {
+    case DIFFUSION_NET_HKS: return "hks";
+    case DIFFUSION_NET_XYZ: return "xyz";
+    case DIFFUSION_NET_HKS_NORMALS: return "hks+normals";
+    }
+    return NULL;
+}
+
+int diffusion_net_features_parse(const char *name, diffusion_net_features *f)
+{
+    static const diffusion_net_features all[] = {DIFFUSION_NET_HKS, DIFFUSION_NET_XYZ, DIFFUSION_NET_HKS_NORMALS};
+    for (size_t i = 0; name && i < sizeof all / sizeof all[0]; i++)
+        if (!strcmp(name, diffusion_net_features_name(all[i]))) { *f = all[i]; return 1; }
+    return 0;
 }

@@ -118,9 +118,20 @@ nn_tensor *diffusion_net_vertices_to_faces(nn_ctx *ctx, const diffusion_net_geom
 /* Input features for the network, float32 #V by *dim (caller frees *out).
  * "hks": the operators' heat kernel signatures (invariant to rigid motions
  * and scale); "xyz": positions minus their area-weighted centroid, scaled so
- * the farthest vertex is at distance 1. */
-typedef enum diffusion_net_features { DIFFUSION_NET_HKS = 0, DIFFUSION_NET_XYZ = 1 } diffusion_net_features;
+ * the farthest vertex is at distance 1; "hks+normals": the signatures and
+ * the unit vertex normals (area-weighted face normals; invariant to
+ * translation and scale, not rotation), so that parts the signatures cannot
+ * tell apart (a cube's sides) can still be told apart by their direction. */
+typedef enum diffusion_net_features {
+    DIFFUSION_NET_HKS = 0,
+    DIFFUSION_NET_XYZ = 1,
+    DIFFUSION_NET_HKS_NORMALS = 2
+} diffusion_net_features;
 neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *ops, diffusion_net_features f,
                                          float **out, int *dim);
+/* "hks", "xyz", "hks+normals"; NULL for another value. */
+const char *diffusion_net_features_name(diffusion_net_features f);
+/* The features a name gives; returns 0 for an unknown name. */
+int diffusion_net_features_parse(const char *name, diffusion_net_features *f);
 
 #endif

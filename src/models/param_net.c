@@ -142,18 +142,9 @@ static neuv_status pairs_append(geodesic_pairs *p, int i, int j, double dist)
 /* Vertex normals (area-weighted face normals), for the feature-free ψ. */
 static neuv_status vertex_normals(const neuv_mesh *m, double **out)
 {
-    double *n = mem_calloc((size_t)m->nv * 3, sizeof(double));
+    double *n = mem_alloc(sizeof(double) * (size_t)m->nv * 3);
     if (!n) return error_nomem("vertex normals");
-    for (int f = 0; f < m->nf; f++) {
-        double fn[3], a = mesh_face_area(m, f);
-        mesh_face_normal(m, f, fn);
-        for (int k = 0; k < 3; k++)
-            for (int c = 0; c < 3; c++) n[3 * m->tri[3 * f + k] + c] += a * fn[c];
-    }
-    for (int v = 0; v < m->nv; v++) {
-        double *p = n + 3 * v, l = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-        if (l > 0) for (int c = 0; c < 3; c++) p[c] /= l;
-    }
+    mesh_vertex_normals(m, n);
     *out = n;
     return NEUV_OK;
 }

@@ -18,6 +18,7 @@
 #include "core/timer.h"
 #include "geometry/heat_geodesics.h"
 #include "losses/patch_losses.h"
+#include "models/patchnet_split.h"
 #include "nn/adam.h"
 
 void patchnet_default_options(patchnet_options *o)
@@ -40,6 +41,7 @@ void patchnet_default_options(patchnet_options *o)
     o->min_area_share = 0.002;
     o->merge_distortion = 1.03;
     o->min_convexity = 0.8;
+    o->empty_share = 0.1;
 }
 
 neuv_status patchnet_apply_preset(patchnet_options *o, const char *preset)
@@ -206,6 +208,61 @@ static neuv_status train_shape_init(train_shape *t, const patchnet_model *model,
     return source_distances(m, t->src, t->S, t->dist);
 }
 
+/* The training loss of one shape: L_cos + L_geo on the softmax output.
+ * Outputs: *P, *hidden (may be NULL), *Lc, *Lg (the two terms). */
+static nn_tensor *patchnet_loss(nn_ctx *ctx, const patchnet_model *model, const train_shape *t, nn_tensor **P,
+                                nn_tensor **hidden, nn_tensor **Lc, nn_tensor **Lg)
+{
+    int nf = t->m->nf;
+    nn_tensor *xin = nn_view(ctx, t->m->nv, t->dim, t->x);
+    nn_tensor *a = nn_view(ctx, nf, 1, t->area);
+    nn_tensor *n = nn_view(ctx, nf, 3, t->normal);
+    nn_tensor *D = nn_view(ctx, t->S, nf, t->dist);
+    nn_tensor *p = patchnet_forward(ctx, model, &t->g, xin, hidden);
+    if (P) *P = p;
+    *Lc = patch_loss_cos(ctx, p, a, n);
+    *Lg = patch_loss_geo(ctx, p, a, t->src, t->S, D);
+    return nn_add(ctx, *Lc, *Lg);
+}
+
+static int param_index(const nn_params *ps, const nn_tensor *p)
+{
+    for (int i = 0; i < ps->n; i++)
+        if (ps->t[i] == p) return i;
+    return -1;
+}
+
+/* Re-seeds an emptied patch by splitting the worst one (models/patchnet_split.h).
+ * The move is always kept, as k-means keeps a re-seeded empty cluster: the
+ * split raises the loss at first where the new column also shifts other
+ * patches' faces, and training settles it (on the cube a kept-if-better rule
+ * found the sides for 9 of 10 seeds, always keeping for 10 of 10). Adam's
+ * moments of the two output columns, which now mean other patches, restart. */
+static neuv_status reseed_empty_patch(nn_ctx *ctx, patchnet_model *model, nn_adam *adam, const train_shape *t,
+                                      const patchnet_options *o, int *kept)
+{
+    *kept = 0;
+    nn_tensor *P, *hidden, *Lc, *Lg;
+    nn_tensor *L = patchnet_loss(ctx, model, t, &P, &hidden, &Lc, &Lg);
+    if (!isfinite(L->data[0])) return NEUV_OK; /* the training step reports it */
+    nn_linear *last = &model->net.last;
+    int K = last->out, C = last->in;
+    patchnet_split move;
+    patchnet_split_empty(P->data, hidden->data, &t->g, t->area, t->normal, K, C, o->empty_share / K, 4.0,
+                         last->w->data, last->b->data, &move);
+    if (move.empty < 0) return NEUV_OK;
+    *kept = 1;
+    int iw = param_index(adam->params, last->w), ib = param_index(adam->params, last->b);
+    int cols[2] = {move.empty, move.split};
+    for (int c = 0; c < 2; c++) {
+        for (int i = 0; iw >= 0 && i < C; i++) adam->m[iw][(size_t)i * K + cols[c]] = adam->v[iw][(size_t)i * K + cols[c]] = 0;
+        if (ib >= 0) adam->m[ib][cols[c]] = adam->v[ib][cols[c]] = 0;
+    }
+    log_message(NEUV_LOG_DEBUG, "PatchNet: patch %d was empty; re-seeded with %.1f%% of the area from patch %d",
+                move.empty, 100 * move.moved_share, move.split);
+    return NEUV_OK;
+}
+
 neuv_status patchnet_train(patchnet_model *model, const neuv_mesh *m, const operators *ops,
                            const patchnet_options *o, patchnet_report *rep)
 {
@@ -249,22 +306,22 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
     int W = o->plateau_window > 0 ? o->plateau_window : 25;
     W = (W + n_shapes - 1) / n_shapes * n_shapes;
     double t1 = now_seconds();
-    int it = 0, plateaued = 0;
+    int it = 0, plateaued = 0, reseeds = 0, hold_plateau_until = 0;
     double lc = 0, lg = 0;
     for (it = 0; it < iters; it++) {
         /* One shape per step, in turn: every step is one shape's full loss. */
         const train_shape *t = &sh[it % n_shapes];
-        int nf = t->m->nf;
         nn_ctx_reset(ctx);
         diffusion_net_clamp_times(&model->net);
-        nn_tensor *xin = nn_view(ctx, t->m->nv, t->dim, t->x);
-        nn_tensor *a = nn_view(ctx, nf, 1, t->area);
-        nn_tensor *n = nn_view(ctx, nf, 3, t->normal);
-        nn_tensor *D = nn_view(ctx, t->S, nf, t->dist);
-        nn_tensor *P = patchnet_forward(ctx, model, &t->g, xin, NULL);
-        nn_tensor *Lc = patch_loss_cos(ctx, P, a, n);
-        nn_tensor *Lg = patch_loss_geo(ctx, P, a, t->src, t->S, D);
-        nn_tensor *L = nn_add(ctx, Lc, Lg);
+        /* Every W steps (while W more are left), an emptied patch is re-seeded. */
+        if (o->empty_share > 0 && (it + 1) % W == 0 && it + 2 * W < iters) {
+            int kept = 0;
+            if ((st = reseed_empty_patch(ctx, model, &adam, t, o, &kept))) goto done;
+            if (kept) { reseeds++; hold_plateau_until = it + 2 * W; }
+            nn_ctx_reset(ctx);
+        }
+        nn_tensor *Lc, *Lg;
+        nn_tensor *L = patchnet_loss(ctx, model, t, NULL, NULL, &Lc, &Lg);
         nn_params_zero_grad(&model->params);
         if ((st = nn_backward(ctx, L))) goto done;
         if (!isfinite(L->data[0])) { st = error_set(NEUV_ERR_INTERNAL, "PatchNet: loss is not finite at iteration %d", it); goto done; }
@@ -277,7 +334,7 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
             { st = error_cancelled(); goto done; }
         /* Plateau: the mean of the last W losses improves on the W before by
          * less than plateau_tol of the earlier mean. */
-        if (it + 1 >= 2 * W) {
+        if (it + 1 >= 2 * W && it >= hold_plateau_until) {
             double prev = 0, cur = 0;
             for (int j = it + 1 - 2 * W; j < it + 1 - W; j++) prev += hist[j];
             for (int j = it + 1 - W; j <= it; j++) cur += hist[j];
@@ -296,6 +353,7 @@ neuv_status patchnet_train_shapes(patchnet_model *model, const neuv_mesh *const 
         rep->geodesic_seconds = t_geo;
         rep->train_seconds = t_train;
         rep->iters_per_second = t_train > 0 ? it / t_train : 0;
+        rep->reseeds = reseeds;
     }
 done:
     if (ctx) nn_ctx_free(ctx);

@@ -46,6 +46,9 @@ typedef struct patchnet_options {
     double merge_distortion; /* auto: adjacent charts merge while the union's LSCM qce_mean is
                               * below this (1.03); <= 0 turns merging off */
     double min_convexity;  /* auto: and its UV area fills this share of its convex hull (0.8) */
+    double empty_share;    /* training: every plateau window, a patch winning less than this share of
+                            * the fair area 1/K is re-seeded by splitting the worst-fitting patch
+                            * (models/patchnet_split.h; 0.1); 0 turns it off */
 } patchnet_options;
 
 /* The `fast` preset (the default). */
@@ -70,6 +73,7 @@ typedef struct patchnet_report {
     int flipped;            /* LSCM flipped faces over all charts */
     double chart_check_seconds;
     int merges;             /* auto: chart pairs merged back after the split loop */
+    int reseeds;            /* emptied patches re-seeded during training (kept moves) */
 } patchnet_report;
 
 /* The trained network, kept so it can be saved (its nn_params) and applied to

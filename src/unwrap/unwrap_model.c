@@ -193,7 +193,7 @@ static char *header_json(const unwrap_model *m)
         json_key(&w, "patchnet_k"); json_int(&w, p->k);
         json_key(&w, "patchnet_k_eig"); json_int(&w, p->k_eig);
         json_key(&w, "patchnet_in_dim"); json_int(&w, p->in_dim);
-        json_key(&w, "patchnet_features"); json_string(&w, p->features == DIFFUSION_NET_XYZ ? "xyz" : "hks");
+        json_key(&w, "patchnet_features"); json_string(&w, diffusion_net_features_name(p->features));
         json_key(&w, "patchnet_blocks"); json_int(&w, p->net.cfg.blocks);
         json_key(&w, "patchnet_width"); json_int(&w, p->net.cfg.width);
         json_key(&w, "patchnet_seed"); json_int(&w, (long long)p->net.cfg.seed);
@@ -492,7 +492,8 @@ static neuv_status load_patchnet(const nn_checkpoint *c, const char *h, unwrap_m
     patchnet_default_options(&o);
     if (header_string_is(h, "patchnet_features", "xyz")) o.features = DIFFUSION_NET_XYZ;
     else if (header_string_is(h, "patchnet_features", "hks")) o.features = DIFFUSION_NET_HKS;
-    else return error_set(NEUV_ERR_INPUT, "model header: \"patchnet_features\" must be \"hks\" or \"xyz\"");
+    else if (header_string_is(h, "patchnet_features", "hks+normals")) o.features = DIFFUSION_NET_HKS_NORMALS;
+    else return error_set(NEUV_ERR_INPUT, "model header: \"patchnet_features\" must be \"hks\", \"xyz\" or \"hks+normals\"");
     o.k_eig = (int)k_eig;
     o.blocks = (int)blocks;
     o.width = (int)width;
