@@ -806,10 +806,11 @@ NEUV_API neuv_status neuv_mesh_jitter(neuv_mesh *mesh, unsigned long long seed, 
 /* ---- PatchNet charts alone (neuv segment) -------------------------------- */
 
 typedef enum neuv_features {
-    NEUV_FEATURES_HKS = 0,     /* heat kernel signatures (default): independent of pose and triangulation */
+    NEUV_FEATURES_HKS = 0,     /* heat kernel signatures: independent of pose and triangulation, but
+                                * blind to parts a symmetry exchanges (a cube's six sides) */
     NEUV_FEATURES_XYZ = 1,     /* positions */
-    NEUV_FEATURES_HKS_NORMALS = 2 /* heat kernel signatures and vertex normals: tells apart parts
-                                   * the signatures alone cannot (a cube's sides) */
+    NEUV_FEATURES_HKS_NORMALS = 2 /* (default) heat kernel signatures and vertex normals: independent of
+                                   * triangulation, translation and scale; tells a cube's sides apart */
 } neuv_features;
 
 typedef struct neuv_segment_options {
@@ -839,6 +840,7 @@ typedef struct neuv_segment_report {
     int lscm_flipped;          /* LSCM flipped faces over all charts */
     int cache_hit;             /* operators read from the cache */
     double seconds_operators, seconds_geodesics, seconds_train, seconds_chart_check;
+    int reseeds;               /* emptied patches re-seeded by splitting the worst-fitting one */
 } neuv_segment_report;
 
 /* PatchNet's charts of mesh (stage 1 of an unwrap, alone): the network

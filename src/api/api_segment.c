@@ -24,7 +24,7 @@ void neuv_segment_options_init(neuv_segment_options *o)
     o->preset = c.preset;
     o->charts = c.charts;
     o->max_distortion = c.max_distortion;
-    o->features = NEUV_FEATURES_HKS;
+    o->features = NEUV_FEATURES_HKS_NORMALS;
     o->iters = c.iters;
     o->seed = c.seed;
     o->threads = c.threads;
@@ -115,6 +115,7 @@ neuv_status neuv_segment(const neuv_mesh *mesh, const neuv_segment_options *o, c
         report->seconds_geodesics = rep.geodesic_seconds;
         report->seconds_train = rep.train_seconds;
         report->seconds_chart_check = rep.chart_check_seconds;
+        report->reseeds = rep.reseeds;
     }
     return NEUV_OK;
 }
@@ -136,6 +137,7 @@ char *neuv_segment_report_json(const neuv_segment_report *r, const char *input_n
                                                                                    : "hks");
     json_key(&w, "patches"); json_int(&w, r->patches);
     json_key(&w, "label_charts"); json_int(&w, r->label_charts);
+    json_key(&w, "reseeds"); json_int(&w, r->reseeds);
     json_key(&w, "splits"); json_int(&w, r->splits);
     json_key(&w, "charts"); json_int(&w, r->charts);
     json_key(&w, "iterations"); json_int(&w, r->iterations);

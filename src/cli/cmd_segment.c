@@ -15,7 +15,7 @@
 
 int cmd_segment(int argc, char **argv)
 {
-    const char *in = NULL, *out = NULL, *charts = "auto", *features = "hks", *preview = NULL, *preset = "fast";
+    const char *in = NULL, *out = NULL, *charts = "auto", *features = "hks+normals", *preview = NULL, *preset = "fast";
     int json = 0, no_cache = 0, bad = 0, seed = 1, iters = 0, seed_set = 0;
     double max_distortion = 1.15;
     for (int i = 1; i < argc && !bad; i++) {

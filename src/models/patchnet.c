@@ -1,10 +1,15 @@
 /* PatchNet: see patchnet.h.
  *
  * Decisions (measured, see bench/RESULTS.md "PatchNet (issue 6)"):
- *   - Input features default to HKS: rigid-motion and scale invariant, so the
- *     same surface posed differently gets the same patches, and the patches
- *     follow intrinsic shape parts; xyz trains to similar losses but its
- *     charts move with the pose. */
+ *   - Input features default to HKS and vertex normals (issue 20, item 5).
+ *     HKS alone is rigid-motion and scale invariant, so the patches follow
+ *     intrinsic shape parts, but it cannot tell apart parts that a symmetry
+ *     of the surface exchanges (a cube's six sides get identical inputs, and
+ *     L_cos stays at 1: no learning); the normals can, and they are what
+ *     L_cos measures. xyz also can, but its charts move with the pose.
+ *     Measured on the cube (sides found for 10 of 10 seeds, HKS 0) and on
+ *     every shared mesh (bench/RESULTS.md, "PatchNet on the cube").
+ *   - An emptied patch is re-seeded during training (patchnet_split.h). */
 #include "models/patchnet.h"
 
 #include <math.h>
@@ -32,7 +37,7 @@ void patchnet_default_options(patchnet_options *o)
     o->blocks = 2;
     o->width = 32;
     o->k_eig = 64;
-    o->features = DIFFUSION_NET_HKS;
+    o->features = DIFFUSION_NET_HKS_NORMALS;
     o->seed = 1;
     o->geo_sources = 128;
     o->plateau_window = 25;

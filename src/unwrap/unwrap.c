@@ -564,6 +564,7 @@ static neuv_status charts_by_patchnet(struct neuv_unwrap_result *r, const unwrap
     unwrap_stage_time(r, STAGE_PATCHES, t);
     r->patches = prep.k;
     r->patch_iterations = prep.iterations;
+    r->patch_reseeds = prep.reseeds;
     r->patch_iters_per_second = prep.iters_per_second;
     if (s != NEUV_OK) { mem_free(features); return s; }
     *features_out = features;

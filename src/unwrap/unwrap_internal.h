@@ -39,6 +39,7 @@ struct neuv_unwrap_result {
     int n_charts;
     int patches;              /* K the segmentation used */
     int patch_iterations;
+    int patch_reseeds;        /* emptied patches re-seeded in training */
     double patch_iters_per_second;
     int param_iterations;
     double param_loss;

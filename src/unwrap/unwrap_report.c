@@ -237,6 +237,7 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_begin_object(&w);
     json_key(&w, "k"); json_int(&w, r->patches);
     json_key(&w, "iterations"); json_int(&w, r->patch_iterations);
+    json_key(&w, "reseeds"); json_int(&w, r->patch_reseeds);
     json_key(&w, "iterations_per_second"); json_number(&w, r->patch_iters_per_second);
     json_key(&w, "operators_cache_hit"); json_bool(&w, r->cache_hit);
     json_end_object(&w);
