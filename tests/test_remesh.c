@@ -2,6 +2,7 @@
  * and jitter (vertices stay on the input surface, connectivity changes,
  * same seed same result). */
 #include "check.h"
+#include "mesh/clean.h"
 #include "mesh/shapes.h"
 #include "mesh/topology.h"
 #include "remesh/jitter.h"
@@ -171,6 +172,52 @@ static int same_mesh(const neuv_mesh *a, const neuv_mesh *b)
            !memcmp(a->tri, b->tri, sizeof(int) * 3 * a->nf);
 }
 
+/* Issue 20, item 6: meshoptimizer's simplifier tears a fine regular bumpy
+ * grid (this one, 99k faces at 0.05, came out with Euler characteristic
+ * 3, 2 non-manifold edges and a duplicate face; the hostile test's 200k
+ * grid with 9 components), and ARPACK then failed on the torn copy. The copy must
+ * keep the input's topology: one component, one boundary loop, a disk's
+ * Euler characteristic, manifold and consistently oriented. */
+static void test_simplify_keeps_topology(void)
+{
+    const int k = 223;
+    neuv_mesh *g = shape_grid(k, k, 1.0, 1.0, 0), *s = NULL;
+    for (int v = 0; v < g->nv; v++)
+        g->pos[3 * v + 2] = 0.1 * sin(3 * g->pos[3 * v]) * cos(2 * g->pos[3 * v + 1]);
+    CHECK_INT(mesh_simplify(g, 0.05, &s), NEUV_OK);
+    if (s) {
+        double want = 0.05 * g->nf;
+        CHECK(fabs(s->nf - want) <= 0.1 * want);
+        int *comp = malloc(sizeof(int) * (size_t)s->nf);
+        CHECK_INT(mesh_face_components(s, comp), 1);
+        free(comp);
+        component_topology t = topo(s);
+        CHECK_INT(t.boundary_loops, 1);
+        CHECK_INT(t.euler, 1);
+        neuv_mesh *c = mesh_clone(s);
+        mesh_clean_report rep;
+        memset(&rep, 0, sizeof rep);
+        CHECK_INT(mesh_clean(c, NULL, &rep), NEUV_OK);
+        CHECK_INT(rep.nonmanifold_edges, 0);
+        CHECK_INT(rep.nonmanifold_vertices, 0);
+        CHECK_INT(rep.duplicate_faces, 0);
+        CHECK_INT(rep.degenerate_faces, 0);
+        CHECK_INT(rep.flipped_faces, 0);
+        /* The copy still spans the unit square. */
+        double lo[3], hi[3];
+        mesh_bounding_box(s, lo, hi);
+        CHECK(lo[0] < 1e-9 && lo[1] < 1e-9 && hi[0] > 1 - 1e-9 && hi[1] > 1 - 1e-9);
+        mesh_free(c);
+        /* Same input, same copy. */
+        neuv_mesh *s2 = NULL;
+        CHECK_INT(mesh_simplify(g, 0.05, &s2), NEUV_OK);
+        CHECK(s2 && same_mesh(s, s2));
+        mesh_free(s2);
+    }
+    mesh_free(s);
+    mesh_free(g);
+}
+
 static void test_jitter(void)
 {
     /* Flat grid with identity UVs: every vertex stays in the plane and in
@@ -241,6 +288,7 @@ int main(void)
     test_midpoint();
     test_loop();
     test_simplify();
+    test_simplify_keeps_topology();
     test_jitter();
     return check_report("test_remesh");
 }
