@@ -245,7 +245,8 @@ static void test_split_empty(void)
     CHECK_NEAR(diff[0], -diff[2], 1e-5);  /* and the pairs on different patches */
     CHECK(w[2] == w0[2] && w[K + 2] == w0[K + 2] && b[2] == b0[2]);
     /* No patch under the share: nothing moves. */
-    for (int f = 0; f < F; f++) { P[f * K] = 0.2f; P[f * K + 1 + f % 2] = 0.7f; P[f * K + 2 - f % 2] = 0.1f; }
+    for (int f = 0; f < F; f++)
+        for (int k = 0; k < K; k++) P[f * K + k] = k == (f < 2 ? f : 2) ? 0.8f : 0.1f; /* faces 0, 1, {2, 3} */
     memcpy(w, w0, sizeof w);
     patchnet_split_empty(P, hidden, &g, area, normal, K, C, 0.05, 4.0, w, b, &mv);
     CHECK_INT(mv.empty, -1);
