@@ -301,7 +301,7 @@ static void test_segment(void)
     int *chart = malloc(sizeof(int) * (size_t)nf);
     neuv_segment_options o;
     neuv_segment_options_init(&o);
-    CHECK(o.charts == 0 && o.max_distortion > 1 && o.seed == 1 && o.use_cache == 1);
+    CHECK(o.charts == 0 && o.max_distortion > 1 && o.seed == 1 && o.use_cache == 1 && o.features == NEUV_FEATURES_HKS_NORMALS);
     o.charts = 3;
     o.iters = 20;
     o.threads = 1;
@@ -313,7 +313,7 @@ static void test_segment(void)
     for (int f = 0; f < nf; f++) in_range &= chart[f] >= 0 && chart[f] < n;
     CHECK(in_range);
     char *json = neuv_segment_report_json(&r, "grid", "grid.ply", 0, 1);
-    CHECK(json && strstr(json, "\"features\":\"hks\"") && strstr(json, "\"patches\":3,"));
+    CHECK(json && strstr(json, "\"features\":\"hks+normals\"") && strstr(json, "\"patches\":3,"));
     neuv_free(json);
 
     const char *ply = tmp_path("test_api_commands-charts.ply");
