@@ -5,6 +5,7 @@ extern "C" {
 #include "mesh/mesh.h"
 }
 #include "remesh/edge_collapse.h"
+#include "remesh/cgal_guard.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -22,43 +23,21 @@ extern "C" {
 
 namespace {
 
-typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
+typedef neuv_cgal::Kernel Kernel;
 typedef CGAL::Surface_mesh<Kernel::Point_3> Surface;
 namespace PMP = CGAL::Polygon_mesh_processing;
 namespace SMS = CGAL::Surface_mesh_simplification;
 
-void silent_warning(const char *, const char *, const char *, int, const char *) {}
-
-/* CGAL's messages span lines; neuv's errors are one line. */
-std::string one_line(std::string s)
-{
-    for (char &c : s)
-        if (c == '\n' || c == '\r') c = ' ';
-    return s;
-}
-
 neuv_status collapse_checked(const neuv_mesh *m, int target_faces, neuv_mesh **out)
 {
     std::vector<Kernel::Point_3> points;
-    std::vector<std::array<int, 3>> faces((size_t)m->nf);
-    points.reserve((size_t)m->nv);
-    for (int v = 0; v < m->nv; v++) {
-        const double *p = m->pos + 3 * (size_t)v;
-        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-            return error_set(NEUV_ERR_INPUT, "edge collapse: vertex %d has a non-finite coordinate", v);
-        points.emplace_back(p[0], p[1], p[2]);
-    }
-    for (int f = 0; f < m->nf; f++)
-        for (int k = 0; k < 3; k++) {
-            int v = m->tri[3 * (size_t)f + k];
-            if (v < 0 || v >= m->nv)
-                return error_set(NEUV_ERR_INPUT, "edge collapse: face %d uses vertex %d of %d", f, v, m->nv);
-            faces[(size_t)f][k] = v;
-        }
-    if (!PMP::is_polygon_soup_a_polygon_mesh(faces))
-        return error_set(NEUV_ERR_INPUT, "edge collapse needs a manifold, oriented triangle mesh: found an edge "
-                                         "with more than two faces, a pinched vertex, a repeated vertex in a "
-                                         "face, or two faces of opposite orientation across an edge");
+    std::vector<std::array<int, 3>> faces;
+    neuv_status st = neuv_cgal::soup_from_mesh(
+        m, "edge collapse",
+        "edge collapse needs a manifold, oriented triangle mesh: found an edge with more than two faces, a pinched "
+        "vertex, a repeated vertex in a face, or two faces of opposite orientation across an edge",
+        points, faces);
+    if (st) return st;
     Surface sm;
     PMP::polygon_soup_to_polygon_mesh(points, faces, sm);
     std::vector<Kernel::Point_3>().swap(points);
@@ -102,25 +81,5 @@ extern "C" neuv_status mesh_edge_collapse(const neuv_mesh *m, int target_faces, 
     *out = NULL;
     if (m->nf <= 0) return error_set(NEUV_ERR_INPUT, "cannot simplify a mesh without faces");
     if (target_faces < 1) return error_set(NEUV_ERR_INPUT, "edge collapse needs a target of at least 1 face, got %d", target_faces);
-    CGAL::Failure_function old_warning = CGAL::set_warning_handler(silent_warning);
-    neuv_status st;
-    try {
-        st = collapse_checked(m, target_faces, out);
-    } catch (const std::bad_alloc &) {
-        st = error_nomem("edge collapse");
-    } catch (const CGAL::Failure_exception &e) {
-        st = error_set(NEUV_ERR_INTERNAL, "edge collapse failed in CGAL: %s%s%s (%s:%d)",
-                       one_line(e.expression()).c_str(), e.message().empty() ? "" : ": ",
-                       one_line(e.message()).c_str(), e.filename().c_str(), e.line_number());
-    } catch (const std::exception &e) {
-        st = error_set(NEUV_ERR_INTERNAL, "edge collapse failed: %s", one_line(e.what()).c_str());
-    } catch (...) {
-        st = error_set(NEUV_ERR_INTERNAL, "edge collapse failed with an unknown exception");
-    }
-    CGAL::set_warning_handler(old_warning);
-    if (st != NEUV_OK && *out) {
-        mesh_free(*out);
-        *out = NULL;
-    }
-    return st;
+    return neuv_cgal::guarded("edge collapse", out, [&] { return collapse_checked(m, target_faces, out); });
 }

@@ -7,6 +7,7 @@ extern "C" {
 #include "spatial/bvh.h"
 }
 #include "remesh/isotropic_remesh.h"
+#include "remesh/cgal_guard.hpp"
 
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -29,7 +30,7 @@ extern "C" {
 
 namespace {
 
-typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
+typedef neuv_cgal::Kernel Kernel;
 typedef CGAL::Surface_mesh<Kernel::Point_3> Surface;
 typedef Surface::Vertex_index Vertex;
 typedef Surface::Edge_index Edge;
@@ -164,39 +165,17 @@ neuv_status max_distance_to(const neuv_mesh *m, const std::vector<double> &pos, 
 }
 
 /* CGAL writes warnings to std::cerr by default; the library prints nothing. */
-void silent_warning(const char *, const char *, const char *, int, const char *) {}
-
-/* CGAL's messages span lines; neuv's errors are one line. */
-std::string one_line(std::string s)
-{
-    for (char &c : s)
-        if (c == '\n' || c == '\r') c = ' ';
-    return s;
-}
-
 neuv_status remesh_checked(const neuv_mesh *m, const isotropic_options &o, neuv_mesh **out, isotropic_report *rep)
 {
     std::vector<Kernel::Point_3> points;
-    std::vector<std::array<int, 3>> faces((size_t)m->nf);
-    points.reserve((size_t)m->nv);
-    for (int v = 0; v < m->nv; v++) {
-        const double *p = m->pos + 3 * (size_t)v;
-        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-            return error_set(NEUV_ERR_INPUT, "isotropic remeshing: vertex %d has a non-finite coordinate", v);
-        points.emplace_back(p[0], p[1], p[2]);
-    }
-    for (int f = 0; f < m->nf; f++)
-        for (int k = 0; k < 3; k++) {
-            int v = m->tri[3 * (size_t)f + k];
-            if (v < 0 || v >= m->nv)
-                return error_set(NEUV_ERR_INPUT, "isotropic remeshing: face %d uses vertex %d of %d", f, v, m->nv);
-            faces[(size_t)f][k] = v;
-        }
-    if (!PMP::is_polygon_soup_a_polygon_mesh(faces))
-        return error_set(NEUV_ERR_INPUT, "isotropic remeshing needs a manifold, oriented triangle mesh: found an "
-                                         "edge with more than two faces, a pinched vertex, a face with a repeated "
-                                         "vertex, or two faces of opposite orientation across an edge (a "
-                                         "non-orientable surface such as a Moebius strip, or an uncleaned mesh)");
+    std::vector<std::array<int, 3>> faces;
+    neuv_status st0 = neuv_cgal::soup_from_mesh(
+        m, "isotropic remeshing",
+        "isotropic remeshing needs a manifold, oriented triangle mesh: found an edge with more than two faces, a "
+        "pinched vertex, a face with a repeated vertex, or two faces of opposite orientation across an edge (a "
+        "non-orientable surface such as a Moebius strip, or an uncleaned mesh)",
+        points, faces);
+    if (st0) return st0;
     double area = mesh_total_area(m);
     if (!(area > 0)) return error_set(NEUV_ERR_INPUT, "isotropic remeshing: the mesh has zero area");
     double L = o.target_edge_length;
@@ -272,25 +251,5 @@ extern "C" neuv_status mesh_remesh_isotropic(const neuv_mesh *m, const isotropic
     if (!(opts->feature_degrees > 0))
         return error_set(NEUV_ERR_INPUT, "isotropic remeshing: feature angle must be > 0, got %g", opts->feature_degrees);
     if (m->nf <= 0) return error_set(NEUV_ERR_INPUT, "cannot remesh a mesh without faces");
-    CGAL::Failure_function old_warning = CGAL::set_warning_handler(silent_warning);
-    neuv_status st;
-    try {
-        st = remesh_checked(m, *opts, out, report);
-    } catch (const std::bad_alloc &) {
-        st = error_nomem("isotropic remeshing");
-    } catch (const CGAL::Failure_exception &e) {
-        st = error_set(NEUV_ERR_INTERNAL, "isotropic remeshing failed in CGAL: %s%s%s (%s:%d)",
-                       one_line(e.expression()).c_str(), e.message().empty() ? "" : ": ",
-                       one_line(e.message()).c_str(), e.filename().c_str(), e.line_number());
-    } catch (const std::exception &e) {
-        st = error_set(NEUV_ERR_INTERNAL, "isotropic remeshing failed: %s", one_line(e.what()).c_str());
-    } catch (...) {
-        st = error_set(NEUV_ERR_INTERNAL, "isotropic remeshing failed with an unknown exception");
-    }
-    CGAL::set_warning_handler(old_warning);
-    if (st != NEUV_OK && *out) {
-        mesh_free(*out);
-        *out = NULL;
-    }
-    return st;
+    return neuv_cgal::guarded("isotropic remeshing", out, [&] { return remesh_checked(m, *opts, out, report); });
 }
