@@ -1195,6 +1195,46 @@ out:
     return worst;
 }
 
+double param_output_solve_dual_error(const param_mlp *f, const param_solve_data *d, double anchor)
+{
+    if (check_f(f, anchor) != NEUV_OK) return INFINITY;
+    int H = f->width, n = 2 * (H + 1);
+    double *theta = mem_alloc(sizeof(double) * (size_t)n), *dual = mem_alloc(sizeof(double) * (size_t)n);
+    solve_state st;
+    normal_eq q = {0};
+    dual_eq dq = {0};
+    double worst = INFINITY;
+    block all = {0};
+    if (!theta || !dual) goto out;
+    theta_from_layer(&f->rest[f->depth - 2], H, theta);
+    if (solve_state_init(&st, f, d, anchor, 0, theta) != NEUV_OK) { solve_state_free(&st); goto out; }
+    all = (block){st.all_faces, st.all_verts, d->nf, d->nv};
+    if (normal_eq_init(&q, n, 0) != NEUV_OK || dual_eq_init(&dq, st.local, st.phi, H, &all) != NEUV_OK) {
+        solve_state_free(&st);
+        goto out;
+    }
+    vertex_eq_reset(&st.eq, all.verts, all.nv);
+    if (d->mips_steps > 0) mips_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &st.eq);
+    else gauss_newton_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &st.eq);
+    if (dual_eq_solve(&dq, &st.eq, &all, dual) == 0) {
+        vertex_eq_flush(&st.eq, st.phi, all.verts, all.nv, &q);
+        if (normal_eq_solve(&q, 0, NULL) == 0) {
+            double scale = 0, diff = 0;
+            for (int i = 0; i < n; i++) {
+                scale = fmax(scale, fabs(q.g[i]));
+                diff = fmax(diff, fabs(q.g[i] - dual[i]));
+            }
+            worst = diff / (scale > 0 ? scale : 1);
+        }
+    }
+    dual_eq_free(&dq, &all);
+    solve_state_free(&st);
+out:
+    normal_eq_free(&q);
+    mem_free(theta); mem_free(dual);
+    return worst;
+}
+
 typedef struct edge_key { int a, b, id; } edge_key;
 
 static int edge_key_cmp(const void *p, const void *q)
