@@ -39,7 +39,8 @@
 #
 # The whole script takes 193 s here (another test run sharing the 2 cores;
 # 126 s when components ran with --method lscm);
-# writing the 2M-face PLY takes 3 s; with NEUV_HOSTILE_LARGE=1 it takes 191 s.
+# writing the 2M-face PLY takes 3 s; with NEUV_HOSTILE_LARGE=1 it took 191 s
+# before components ran the neural method (some 55 s more now).
 #
 # Known failures (bugs found; both fixed now, kept for the record):
 # (1, fixed) Grids of 200k faces and more were refused after ~100 s with
