@@ -537,13 +537,14 @@ typedef struct solve_state {
     int *all_faces, *all_verts;
     vertex_eq eq;            /* the Gauss-Newton sums */
     double *fit_mass;        /* nv, zero between uses: fit_head's vertex weights (only with d->fit_uv) */
+    int *local;              /* nv, -1 between uses: a vertex's index in the block dual_eq solves */
 } solve_state;
 
 static void solve_state_free(solve_state *st)
 {
     mem_free(st->phi); mem_free(st->z); mem_free(st->uv); mem_free(st->uv0); mem_free(st->tz); mem_free(st->tuv); mem_free(st->mv);
     mem_free(st->sigma); mem_free(st->fold_s2); mem_free(st->face_start); mem_free(st->face_list); mem_free(st->vert_start); mem_free(st->vert_list);
-    mem_free(st->all_faces); mem_free(st->all_verts); mem_free(st->fit_mass);
+    mem_free(st->all_faces); mem_free(st->all_verts); mem_free(st->fit_mass); mem_free(st->local);
     vertex_eq_free(&st->eq);
 }
 
@@ -593,15 +594,16 @@ static neuv_status solve_state_init(solve_state *st, const param_mlp *f, const p
     st->vert_list = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
     st->all_faces = mem_alloc(sizeof(int) * (size_t)(d->nf > 0 ? d->nf : 1));
     st->all_verts = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
+    st->local = mem_alloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
     double *csum = mem_calloc((size_t)nc, sizeof(double));
     if (d->fit_uv) st->fit_mass = mem_calloc((size_t)(nv > 0 ? nv : 1), sizeof(double));
-    if ((d->fit_uv && !st->fit_mass) || !st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->fold_s2 || !st->face_start ||
+    if ((d->fit_uv && !st->fit_mass) || !st->local || !st->phi || !st->z || !st->uv || !st->uv0 || !st->tz || !st->tuv || !st->mv || !st->sigma || !st->fold_s2 || !st->face_start ||
         !st->vert_start || !st->face_list || !st->vert_list || !st->all_faces || !st->all_verts || !csum) {
         mem_free(csum);
         return error_nomem("output-layer solve");
     }
     for (int f0 = 0; f0 < d->nf; f0++) { st->face_start[d->fchart[f0] + 1]++; st->all_faces[f0] = f0; }
-    for (int v = 0; v < nv; v++) { st->vert_start[d->vchart[v] + 1]++; st->all_verts[v] = v; }
+    for (int v = 0; v < nv; v++) { st->vert_start[d->vchart[v] + 1]++; st->all_verts[v] = v; st->local[v] = -1; }
     for (int c = 0; c < nc; c++) { st->face_start[c + 1] += st->face_start[c]; st->vert_start[c + 1] += st->vert_start[c]; }
     int *fp = mem_alloc(sizeof(int) * (size_t)nc), *vp = mem_alloc(sizeof(int) * (size_t)nc);
     if (!fp || !vp) { mem_free(fp); mem_free(vp); mem_free(csum); return error_nomem("output-layer solve"); }
@@ -655,6 +657,91 @@ static double block_objective(const solve_state *st, const block *b, const doubl
     return e + anchor * block_anchor(b, uv, st->uv0, st->mv);
 }
 
+/* The Gauss-Newton step of a block with fewer vertices than features, solved
+ * in vertex space. The step solves (Pᵀ M P + λ I) θ = −Pᵀ h, P = I₂ ⊗ Φ̂
+ * (V by K each), M the 2V by 2V sums of vertex_eq (u block, then v) and h =
+ * (hu, hv). With θ = Pᵀ y that is Pᵀ [(M G₂ + λ I) y + h] = 0, G₂ = P Pᵀ =
+ * I₂ ⊗ Φ̂ Φ̂ᵀ, so y solving the 2V by 2V system (M G₂ + λ I) y = −h gives the
+ * same θ (the push-through identity; unique since λ > 0) at (2V)³ instead of
+ * (2K)³ and without the 2K by 2K matrix: a chart's step costs what its
+ * vertices cost, not what the features cost. λ is normal_eq_solve's ridge,
+ * tr(Pᵀ M P) = tr(M G₂). Vertices no row touches get y = 0. */
+typedef struct dual_eq {
+    int V, K;
+    int *local;        /* the state's nv entries: a block vertex's index, else -1 (owned by the state) */
+    double *phi;       /* V by K: φ̂ at the block's vertices */
+    double *gram;      /* V by V: Φ̂ Φ̂ᵀ */
+    double *m, *s, *y; /* 2V by 2V, 2V by 2V, 2V */
+    int *ipiv;         /* 2V */
+} dual_eq;
+
+static void dual_eq_free(dual_eq *q, const block *b)
+{
+    if (q->local && b)
+        for (int k = 0; k < b->nv; k++) q->local[b->verts[k]] = -1;
+    mem_free(q->phi); mem_free(q->gram); mem_free(q->m); mem_free(q->s); mem_free(q->y); mem_free(q->ipiv);
+    memset(q, 0, sizeof *q);
+}
+
+static neuv_status dual_eq_init(dual_eq *q, int *local, const float *phi, int H, const block *b)
+{
+    memset(q, 0, sizeof *q);
+    int V = q->V = b->nv, K = q->K = H + 1;
+    size_t v2 = 2 * (size_t)V;
+    q->phi = mem_alloc(sizeof(double) * (size_t)V * K);
+    q->gram = mem_alloc(sizeof(double) * (size_t)V * V);
+    q->m = mem_alloc(sizeof(double) * v2 * v2);
+    q->s = mem_alloc(sizeof(double) * v2 * v2);
+    q->y = mem_alloc(sizeof(double) * v2);
+    q->ipiv = mem_alloc(sizeof(int) * v2);
+    if (!q->phi || !q->gram || !q->m || !q->s || !q->y || !q->ipiv) { dual_eq_free(q, NULL); return error_nomem("output-layer solve"); }
+    q->local = local;
+    for (int k = 0; k < V; k++) {
+        int v = b->verts[k];
+        local[v] = k;
+        double *r = q->phi + (size_t)k * K;
+        const float *p = phi + (size_t)v * H;
+        for (int i = 0; i < H; i++) r[i] = p[i];
+        r[H] = 1;
+    }
+    cblas_dgemm(CblasRowMajor, CblasNoTrans, CblasTrans, V, V, K, 1.0, q->phi, K, q->phi, K, 0.0, q->gram, V);
+    return NEUV_OK;
+}
+
+/* The step's θ (n = 2K numbers) from the block's sums; 0, or -1 when the
+ * system is singular. */
+static int dual_eq_solve(dual_eq *q, const vertex_eq *e, const block *b, double *theta)
+{
+    int V = q->V, K = q->K, W = 2 * V;
+    double *M = q->m, *S = q->s, *G = q->gram, *y = q->y;
+    memset(M, 0, sizeof(double) * (size_t)W * W);
+    for (int k = 0; k < V; k++) {
+        int v = b->verts[k];
+        for (int p = e->start[v]; p < e->start[v + 1]; p++) {
+            int l = q->local[e->col[p]];
+            if (l < 0) continue; /* not the block's (a block is whole charts) */
+            M[(size_t)k * W + l] = e->muu[p];
+            M[(size_t)k * W + V + l] = e->muv[p];
+            M[(size_t)(V + l) * W + k] = e->muv[p];
+            M[(size_t)(V + k) * W + V + l] = e->mvv[p];
+        }
+        y[k] = -e->hu[v];
+        y[V + k] = -e->hv[v];
+    }
+    double tr = 0;
+    for (int i = 0; i < V; i++)
+        for (int j = 0; j < V; j++)
+            tr += (M[(size_t)i * W + j] + M[(size_t)(V + i) * W + V + j]) * G[(size_t)j * V + i];
+    double ridge = 1e-9 * (tr > 0 ? tr / (2 * K) : 1) + 1e-300;
+    cblas_dgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, W, V, V, 1.0, M, W, G, V, 0.0, S, W);
+    cblas_dgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, W, V, V, 1.0, M + V, W, G, V, 0.0, S + V, W);
+    for (int i = 0; i < W; i++) S[(size_t)i * W + i] += ridge;
+    if (LAPACKE_dgesv(LAPACK_ROW_MAJOR, W, 1, S, W, q->ipiv, y, 1) != 0) return -1;
+    cblas_dgemv(CblasRowMajor, CblasTrans, V, K, 1.0, q->phi, K, y, 1, 0.0, theta, 1);
+    cblas_dgemv(CblasRowMajor, CblasTrans, V, K, 1.0, q->phi, K, y + V, 1, 0.0, theta + K, 1);
+    return 0;
+}
+
 /* Gauss-Newton on theta for one block and objective, from the state's z/uv
  * at theta. A step is halved until the objective falls. The result is the
  * iterate chosen by `keep` among the start and the steps: without the fold
@@ -672,18 +759,32 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
     double e = block_objective(st, b, st->uv, mips, anchor, &flips0);
     int flips_start = flips0, fewest = !mips && d->fold_weight > 0;
     /* One system's buffers for every step (a fresh n² matrix per step costs
-     * more than the solve on a small chart: page faults). */
+     * more than the solve on a small chart: page faults). A block with fewer
+     * vertices than features is solved in vertex space (dual_eq). */
     normal_eq q;
-    if (normal_eq_init(&q, n, 0) != NEUV_OK) { mem_free(trial); mem_free(best); return -1; }
+    dual_eq dq;
+    memset(&q, 0, sizeof q);
+    memset(&dq, 0, sizeof dq);
+    int dual = b->nv < H + 1;
+    double *sol = dual ? mem_alloc(sizeof(double) * (size_t)n) : NULL;
+    if (dual ? !sol || dual_eq_init(&dq, st->local, st->phi, H, b) != NEUV_OK : normal_eq_init(&q, n, 0) != NEUV_OK) {
+        mem_free(sol); mem_free(trial); mem_free(best);
+        return -1;
+    }
+    if (!dual) sol = q.g;
     for (int step = 0; step < steps; step++) {
         vertex_eq_reset(&st->eq, b->verts, b->nv);
         if (mips) mips_rows(d, b, st->z, st->uv, st->uv0, st->mv, st->sigma, anchor, &st->eq);
         else gauss_newton_rows(d, b, st->z, st->uv, st->uv0, st->mv, st->sigma, st->fold_s2, anchor, &st->eq);
-        vertex_eq_flush(&st->eq, st->phi, b->verts, b->nv, &q);
-        if (normal_eq_solve(&q, 0, NULL) != 0) break;
+        if (dual) {
+            if (dual_eq_solve(&dq, &st->eq, b, sol) != 0) break;
+        } else {
+            vertex_eq_flush(&st->eq, st->phi, b->verts, b->nv, &q);
+            if (normal_eq_solve(&q, 0, NULL) != 0) break;
+        }
         int kept = 0, fl = 0;
         for (double alpha = 1; alpha > (mips ? 1e-4 : 1.0 / 64) && !kept; alpha *= 0.5) {
-            for (int i = 0; i < n; i++) trial[i] = theta[i] + alpha * (q.g[i] - theta[i]);
+            for (int i = 0; i < n; i++) trial[i] = theta[i] + alpha * (sol[i] - theta[i]);
             map_block(st->phi, H, trial, b, st->tz, st->tuv);
             double et = block_objective(st, b, st->tuv, mips, anchor, &fl);
             if (isfinite(et) && et < e) {
@@ -705,6 +806,7 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
         }
     }
     normal_eq_free(&q);
+    if (dual) { dual_eq_free(&dq, b); mem_free(sol); }
     if (best_step != taken) { /* back to the best valid iterate */
         memcpy(theta, best, sizeof(double) * (size_t)n);
         map_block(st->phi, H, theta, b, st->z, st->uv);
@@ -1090,6 +1192,46 @@ double param_output_solve_gradient_error(const param_mlp *f, const param_solve_d
 out:
     normal_eq_free(&q);
     mem_free(theta); mem_free(grad);
+    return worst;
+}
+
+double param_output_solve_dual_error(const param_mlp *f, const param_solve_data *d, double anchor)
+{
+    if (check_f(f, anchor) != NEUV_OK) return INFINITY;
+    int H = f->width, n = 2 * (H + 1);
+    double *theta = mem_alloc(sizeof(double) * (size_t)n), *dual = mem_alloc(sizeof(double) * (size_t)n);
+    solve_state st;
+    normal_eq q = {0};
+    dual_eq dq = {0};
+    double worst = INFINITY;
+    block all = {0};
+    if (!theta || !dual) goto out;
+    theta_from_layer(&f->rest[f->depth - 2], H, theta);
+    if (solve_state_init(&st, f, d, anchor, 0, theta) != NEUV_OK) { solve_state_free(&st); goto out; }
+    all = (block){st.all_faces, st.all_verts, d->nf, d->nv};
+    if (normal_eq_init(&q, n, 0) != NEUV_OK || dual_eq_init(&dq, st.local, st.phi, H, &all) != NEUV_OK) {
+        solve_state_free(&st);
+        goto out;
+    }
+    vertex_eq_reset(&st.eq, all.verts, all.nv);
+    if (d->mips_steps > 0) mips_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &st.eq);
+    else gauss_newton_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &st.eq);
+    if (dual_eq_solve(&dq, &st.eq, &all, dual) == 0) {
+        vertex_eq_flush(&st.eq, st.phi, all.verts, all.nv, &q);
+        if (normal_eq_solve(&q, 0, NULL) == 0) {
+            double scale = 0, diff = 0;
+            for (int i = 0; i < n; i++) {
+                scale = fmax(scale, fabs(q.g[i]));
+                diff = fmax(diff, fabs(q.g[i] - dual[i]));
+            }
+            worst = diff / (scale > 0 ? scale : 1);
+        }
+    }
+    dual_eq_free(&dq, &all);
+    solve_state_free(&st);
+out:
+    normal_eq_free(&q);
+    mem_free(theta); mem_free(dual);
     return worst;
 }
 

@@ -137,4 +137,12 @@ void param_heads_apply(const param_mlp *f, const float *hidden, int n, const int
  * or allocation failure. */
 double param_output_solve_gradient_error(const param_mlp *f, const param_solve_data *d, double anchor, int n_probe);
 
+/* For tests: the largest difference, relative to the largest entry, between
+ * the Gauss-Newton step of f's shared output layer solved in feature space
+ * (2(H+1) unknowns) and in vertex space (2 #V: what a block with fewer
+ * vertices than features uses); the same step in exact arithmetic. The rows
+ * are the scale-free energy's when d->mips_steps > 0. INFINITY on bad input,
+ * a singular system or allocation failure. */
+double param_output_solve_dual_error(const param_mlp *f, const param_solve_data *d, double anchor);
+
 #endif
