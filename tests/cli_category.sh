@@ -77,8 +77,11 @@ print(f"heads: network area {ha:.3f}, qce ratio to LSCM {hr:.4f}; shared layer: 
 # small moves by a few percent with the last bits of sgemm, so the bound here
 # separates the heads from the shared layer with room for that; the issue's 3%
 # bar is measured by bench/bench_category.sh (20 members, 1600 steps): 0.999-1.001.
+# With PatchNet's hks+normals input (2026-12-06) the shared layer maps all of
+# this small model's charts injectively too (area 1.000, ratio 1.31 against the
+# heads' 1.0000), so the area no longer separates them; the ratio does.
 assert ha >= 0.9 and hr <= 1.08, (ha, hr)
-assert ha > sa, (ha, sa)
+assert ha >= sa, (ha, sa)
 assert hr < sr, (hr, sr)
 PYEOF
 
