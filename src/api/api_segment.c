@@ -31,6 +31,18 @@ void neuv_segment_options_init(neuv_segment_options *o)
     o->use_cache = c.use_cache;
 }
 
+/* The network's input for the public choice; a value outside the enum gives
+ * one whose name is NULL. */
+static diffusion_net_features network_features(neuv_features f)
+{
+    switch (f) {
+    case NEUV_FEATURES_HKS: return DIFFUSION_NET_HKS;
+    case NEUV_FEATURES_XYZ: return DIFFUSION_NET_XYZ;
+    case NEUV_FEATURES_HKS_NORMALS: return DIFFUSION_NET_HKS_NORMALS;
+    }
+    return (diffusion_net_features)-1;
+}
+
 static neuv_status patchnet_options_of(const neuv_segment_options *o, patchnet_options *po)
 {
     if (o->preset != NEUV_PRESET_FAST && o->preset != NEUV_PRESET_PAPER)
@@ -38,7 +50,7 @@ static neuv_status patchnet_options_of(const neuv_segment_options *o, patchnet_o
     if (o->charts < 0 || o->charts > MAX_SEGMENT_CHARTS)
         return error_set(NEUV_ERR_INPUT, "charts must be 0 (automatic) or a count in 1..%d, got %d", MAX_SEGMENT_CHARTS,
                          o->charts);
-    if (o->features != NEUV_FEATURES_HKS && o->features != NEUV_FEATURES_XYZ && o->features != NEUV_FEATURES_HKS_NORMALS)
+    if (!diffusion_net_features_name(network_features(o->features)))
         return error_set(NEUV_ERR_INPUT, "unknown features %d", (int)o->features);
     if (!(o->max_distortion > 1)) return error_set(NEUV_ERR_INPUT, "max_distortion must be above 1, got %g", o->max_distortion);
     if (o->iters < 0) return error_set(NEUV_ERR_INPUT, "iters must be 0 (the preset's) or a step count, got %d", o->iters);
@@ -47,9 +59,7 @@ static neuv_status patchnet_options_of(const neuv_segment_options *o, patchnet_o
     neuv_status s = patchnet_apply_preset(po, o->preset == NEUV_PRESET_PAPER ? "paper" : "fast");
     if (s != NEUV_OK) return s;
     po->charts = o->charts;
-    po->features = o->features == NEUV_FEATURES_XYZ           ? DIFFUSION_NET_XYZ
-                   : o->features == NEUV_FEATURES_HKS_NORMALS ? DIFFUSION_NET_HKS_NORMALS
-                                                              : DIFFUSION_NET_HKS;
+    po->features = network_features(o->features);
     po->max_distortion = o->max_distortion;
     po->seed = (uint64_t)o->seed;
     if (o->iters > 0) po->iters = o->iters;
@@ -132,9 +142,8 @@ char *neuv_segment_report_json(const neuv_segment_report *r, const char *input_n
     json_key(&w, "vertices"); json_int(&w, r->vertices);
     json_key(&w, "faces"); json_int(&w, r->faces);
     json_key(&w, "seed"); json_int(&w, (long long)r->seed);
-    json_key(&w, "features"); json_string(&w, r->features == NEUV_FEATURES_XYZ           ? "xyz"
-                                        : r->features == NEUV_FEATURES_HKS_NORMALS ? "hks+normals"
-                                                                                   : "hks");
+    const char *features = diffusion_net_features_name(network_features(r->features));
+    json_key(&w, "features"); json_string(&w, features ? features : "");
     json_key(&w, "patches"); json_int(&w, r->patches);
     json_key(&w, "label_charts"); json_int(&w, r->label_charts);
     json_key(&w, "reseeds"); json_int(&w, r->reseeds);

@@ -243,11 +243,3 @@ const char *diffusion_net_features_name(diffusion_net_features f)
     }
     return NULL;
 }
-
-int diffusion_net_features_parse(const char *name, diffusion_net_features *f)
-{
-    static const diffusion_net_features all[] = {DIFFUSION_NET_HKS, DIFFUSION_NET_XYZ, DIFFUSION_NET_HKS_NORMALS};
-    for (size_t i = 0; name && i < sizeof all / sizeof all[0]; i++)
-        if (!strcmp(name, diffusion_net_features_name(all[i]))) { *f = all[i]; return 1; }
-    return 0;
-}

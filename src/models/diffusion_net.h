@@ -129,9 +129,8 @@ typedef enum diffusion_net_features {
 } diffusion_net_features;
 neuv_status diffusion_net_input_features(const neuv_mesh *m, const operators *ops, diffusion_net_features f,
                                          float **out, int *dim);
-/* "hks", "xyz", "hks+normals"; NULL for another value. */
+/* "hks", "xyz", "hks+normals" (the values 0, 1, 2, as model files name
+ * them); NULL for another value. */
 const char *diffusion_net_features_name(diffusion_net_features f);
-/* The features a name gives; returns 0 for an unknown name. */
-int diffusion_net_features_parse(const char *name, diffusion_net_features *f);
 
 #endif

@@ -490,10 +490,13 @@ static neuv_status load_patchnet(const nn_checkpoint *c, const char *h, unwrap_m
         return s;
     patchnet_options o;
     patchnet_default_options(&o);
-    if (header_string_is(h, "patchnet_features", "xyz")) o.features = DIFFUSION_NET_XYZ;
-    else if (header_string_is(h, "patchnet_features", "hks")) o.features = DIFFUSION_NET_HKS;
-    else if (header_string_is(h, "patchnet_features", "hks+normals")) o.features = DIFFUSION_NET_HKS_NORMALS;
-    else return error_set(NEUV_ERR_INPUT, "model header: \"patchnet_features\" must be \"hks\", \"xyz\" or \"hks+normals\"");
+    int known = 0;
+    for (int f = 0; !known && diffusion_net_features_name((diffusion_net_features)f); f++)
+        if (header_string_is(h, "patchnet_features", diffusion_net_features_name((diffusion_net_features)f))) {
+            o.features = (diffusion_net_features)f;
+            known = 1;
+        }
+    if (!known) return error_set(NEUV_ERR_INPUT, "model header: \"patchnet_features\" must be \"hks\", \"xyz\" or \"hks+normals\"");
     o.k_eig = (int)k_eig;
     o.blocks = (int)blocks;
     o.width = (int)width;
