@@ -120,6 +120,50 @@ int main(void)
         CHECK_INT(param_net_apply_inverse(r1.model, 0, q, 1, back), NEUV_OK);
         CHECK(fabs(back[0] - p[0]) + fabs(back[1] - p[1]) + fabs(back[2] - p[2]) < 0.5);
         CHECK_INT(param_net_apply(r1.model, 1, p, 1, q), NEUV_ERR_INPUT);
+
+        /* A head solved on a piece (the grid's left half), kept as a chart of
+         * its own (what the repair of a folded chart does): the model then
+         * gives that piece's map by plain inference, the parent's map is
+         * unchanged, and a bad parent is refused. */
+        CHECK(r1.model->heads != NULL && r1.model->uv_gain != NULL);
+        int hs = param_head_size(&r1.model->f), n = grid->nv, nf = 0;
+        neuv_mesh *half = mesh_create(n, grid->nf, 0);
+        memcpy(half->pos, grid->pos, sizeof(double) * 3 * (size_t)n);
+        for (int f = 0; f < grid->nf; f++) {
+            const int *t = grid->tri + 3 * f;
+            if (grid->pos[3 * t[0]] + grid->pos[3 * t[1]] + grid->pos[3 * t[2]] < 1.5) {
+                memcpy(half->tri + 3 * nf, t, sizeof(int) * 3);
+                nf++;
+            }
+        }
+        half->nf = nf;
+        float *head = malloc(sizeof(float) * (size_t)hs);
+        double gain = 0, *su = malloc(sizeof(double) * 2 * (size_t)n), *sa = malloc(sizeof(double) * 2 * (size_t)n);
+        double *before = malloc(sizeof(double) * 2 * (size_t)n), *after = malloc(sizeof(double) * 2 * (size_t)n);
+        CHECK_INT(param_net_solve_head(r1.model, 0, half, su, head, &gain), NEUV_OK);
+        CHECK_INT(param_net_apply_solved(r1.model, 0, half, sa, NULL), NEUV_OK);
+        CHECK(memcmp(su, sa, sizeof(double) * 2 * (size_t)n) == 0);
+        CHECK(gain > 0);
+        CHECK_INT(param_net_apply(r1.model, 0, grid->pos, n, before), NEUV_OK);
+        int id = -1;
+        CHECK_INT(param_net_add_chart(r1.model, 5, head, gain, &id), NEUV_ERR_INPUT);
+        CHECK_INT(r1.model->n_charts, 1);
+        CHECK_INT(param_net_add_chart(r1.model, 0, head, gain, &id), NEUV_OK);
+        CHECK_INT(id, 1);
+        CHECK_INT(r1.model->n_charts, 2);
+        CHECK_INT(param_net_apply(r1.model, 1, grid->pos, n, sa), NEUV_OK);
+        CHECK_INT(param_net_apply(r1.model, 0, grid->pos, n, after), NEUV_OK);
+        double worst = 0, span = 0, moved = 0;
+        for (int i = 0; i < 2 * n; i++) {
+            worst = fmax(worst, fabs(sa[i] - su[i]));
+            span = fmax(span, fabs(su[i]));
+            moved = fmax(moved, fabs(su[i] - before[i]));
+        }
+        CHECK(worst <= 1e-5 * span); /* float32 inference, rows batched differently */
+        CHECK(moved > 1e-3 * span);   /* the solved head is not the learnt one */
+        CHECK(memcmp(before, after, sizeof(double) * 2 * (size_t)n) == 0);
+        free(head); free(su); free(sa); free(before); free(after);
+        mesh_free(half);
     }
     param_net_model_free(r1.model);
     param_net_model_free(r2.model);

@@ -225,6 +225,20 @@ neuv_status param_net_apply(const param_net_model *model, int chart_id, const do
 neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
                                    param_solve_report *rep);
 
+/* As param_net_apply_solved, also giving the solved output layer (head:
+ * param_head_size(&model->f) floats) and the gain that brings its map to the
+ * chart's 3D area: what param_net_add_chart needs to keep the map. */
+neuv_status param_net_solve_head(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
+                                 float *head, double *gain);
+
+/* Appends a chart to the model that is chart `parent` (its frame, mirror
+ * and ψ) with its own output layer `head` and `gain` (param_net_solve_head on
+ * a piece of the parent's surface), so that the piece's map is the model's
+ * and is saved with it. Needs a pooled-ψ model with heads and gains.
+ * Outputs: *id, the new chart's index (the old n_charts).
+ * Returns NEUV_OK, NEUV_ERR_INPUT or NEUV_ERR_NOMEM (the model unchanged). */
+neuv_status param_net_add_chart(param_net_model *model, int parent, const float *head, double gain, int *id);
+
 /* Surface points of chart `chart_id` from UVs by MLP_f⁻¹ (the inverse map).
  * Inputs: uv #N by 2 (as param_net_apply returns). Outputs: points #N by 3, mesh units. */
 neuv_status param_net_apply_inverse(const param_net_model *model, int chart_id, const double *uv, int n,

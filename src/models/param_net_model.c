@@ -130,8 +130,10 @@ neuv_status param_net_apply_inverse(const param_net_model *model, int chart_id, 
     return s;
 }
 
-neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
-                                   param_solve_report *rep)
+/* The core of param_net_apply_solved and param_net_solve_head: the solved
+ * output layer into head_out (param_head_size floats), its gain into *gain_out. */
+static neuv_status solve_head(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
+                              float *head_out, double *gain_out, param_solve_report *rep)
 {
     param_solve_report local;
     if (!rep) rep = &local;
@@ -185,10 +187,66 @@ neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, c
         }
         double gain = fabs(auv) > 0 && a3 > 0 ? sqrt(a3 / fabs(auv)) : model->uv_gain ? model->uv_gain[chart_id] : 1;
         uv_from_net(model, chart_id, out, nv, gain, uv);
+        *gain_out = gain;
+        memcpy(head_out, head, sizeof(float) * (size_t)hs);
     }
     param_solve_subdivided_free(&sub);
     param_corners_free(&corners);
     mem_free(x); mem_free(frame_inv); mem_free(face_w); mem_free(head); mem_free(out); mem_free(xn);
     mem_free(vchart); mem_free(fchart);
     return s;
+}
+
+neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
+                                   param_solve_report *rep)
+{
+    if (!model || !model->heads || chart_id < 0 || chart_id >= model->n_charts)
+        return solve_head(model, chart_id, chart, uv, NULL, NULL, rep); /* its own error */
+    float *head = mem_alloc(sizeof(float) * (size_t)param_head_size(&model->f));
+    if (!head) return error_nomem("chart head");
+    double gain;
+    neuv_status s = solve_head(model, chart_id, chart, uv, head, &gain, rep);
+    mem_free(head);
+    return s;
+}
+
+neuv_status param_net_solve_head(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
+                                 float *head, double *gain)
+{
+    return solve_head(model, chart_id, chart, uv, head, gain, NULL);
+}
+
+neuv_status param_net_add_chart(param_net_model *model, int parent, const float *head, double gain, int *id)
+{
+    if (!model || !model->heads || !model->uv_gain || parent < 0 || parent >= model->n_charts)
+        return error_set(NEUV_ERR_INPUT, "chart %d cannot be derived: not in the model, or no output layers", parent);
+    if (model->psi_mode != PARAM_PSI_POOLED)
+        return error_set(NEUV_ERR_INPUT, "a per-vertex-feature model has no per-chart codes to derive a chart from");
+    int n = model->n_charts + 1, hs = param_head_size(&model->f), pd = model->psi_dim;
+    float *psi = mem_realloc(model->psi, sizeof(float) * (size_t)n * (size_t)pd);
+    if (psi) model->psi = psi;
+    double *center = mem_realloc(model->center, sizeof(double) * 3 * (size_t)n);
+    if (center) model->center = center;
+    double *scale = mem_realloc(model->scale, sizeof(double) * (size_t)n);
+    if (scale) model->scale = scale;
+    double *rot = mem_realloc(model->rot, sizeof(double) * 9 * (size_t)n);
+    if (rot) model->rot = rot;
+    int *mirror = mem_realloc(model->mirror, sizeof(int) * (size_t)n);
+    if (mirror) model->mirror = mirror;
+    float *heads = mem_realloc(model->heads, sizeof(float) * (size_t)n * (size_t)hs);
+    if (heads) model->heads = heads;
+    double *uv_gain = mem_realloc(model->uv_gain, sizeof(double) * (size_t)n);
+    if (uv_gain) model->uv_gain = uv_gain;
+    if (!psi || !center || !scale || !rot || !mirror || !heads || !uv_gain) return error_nomem("chart head");
+    int c = model->n_charts;
+    memcpy(model->psi + (size_t)c * pd, model->psi + (size_t)parent * pd, sizeof(float) * (size_t)pd);
+    memcpy(model->center + 3 * c, model->center + 3 * parent, sizeof(double) * 3);
+    model->scale[c] = model->scale[parent];
+    memcpy(model->rot + 9 * c, model->rot + 9 * parent, sizeof(double) * 9);
+    model->mirror[c] = model->mirror[parent];
+    memcpy(model->heads + (size_t)c * hs, head, sizeof(float) * (size_t)hs);
+    model->uv_gain[c] = gain;
+    model->n_charts = n;
+    *id = c;
+    return NEUV_OK;
 }

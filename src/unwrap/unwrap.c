@@ -82,11 +82,13 @@ void unwrap_piece_clear(chart_piece *p)
 neuv_status unwrap_piece_build(const neuv_mesh *m, const int *face_chart, int id, chart_piece *p)
 {
     int from_split = p->from_split, net_split = p->net_split, net_head = p->net_head, net_depth = p->net_depth;
+    int net_solved = p->net_solved;
     unwrap_piece_clear(p);
     p->from_split = from_split;
     p->net_split = net_split;
     p->net_head = net_head;
     p->net_depth = net_depth;
+    p->net_solved = net_solved;
     neuv_status s = chart_submesh(m, face_chart, id, &p->sub, &p->vmap, &p->fmap);
     if (s != NEUV_OK) return s;
     p->uv = mem_calloc((size_t)p->sub->nv * 2, sizeof(double));
@@ -340,8 +342,34 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
         if (corner_uv && (!p->from_split || p->net_split)) {
             int head = p->net_split ? p->net_head : c;
             p->tried = head;
+            float *solved = NULL; /* a fold's piece: the output layer solved on it */
+            double gain = 1, solved_qce = NAN;
+            int poor = 0; /* injective, but far less conformal than LSCM on the piece */
             piece_uv_from_corners(p, corner_uv);
             int ok = chart_uv_check_run(p->sub, p->uv, &chk);
+            /* A piece of a chart the networks folded: their learnt map if it
+             * is injective and conformal enough here, else the map of an
+             * output layer solved on the piece, under the same bound. */
+            if (ok > 0 && p->net_solved) {
+                if ((s = unwrap_piece_lscm_qce(p)) != NEUV_OK) break;
+                solved_qce = chart_qce_mean(p->sub, p->uv, NULL);
+                if (!(solved_qce <= SOLVED_HEAD_MAX_QCE_RATIO * p->lscm_qce)) ok = 0;
+            }
+            if (ok == 0 && p->net_solved) {
+                solved = mem_alloc(sizeof(float) * (size_t)param_head_size(&r->param->f));
+                s = solved ? param_net_solve_head(r->param, head, p->sub, p->uv, solved, &gain) : error_nomem("charts");
+                if (s == NEUV_OK) ok = chart_uv_check_run(p->sub, p->uv, &chk);
+                if (s == NEUV_OK && ok > 0 && isnan(p->lscm_qce)) s = unwrap_piece_lscm_qce(p);
+                if (s != NEUV_OK) { mem_free(solved); break; }
+                solved_qce = chart_qce_mean(p->sub, p->uv, NULL);
+                if (ok > 0 && !(solved_qce <= SOLVED_HEAD_MAX_QCE_RATIO * p->lscm_qce)) { poor = 1; ok = 0; }
+            }
+            if (ok > 0 && solved) { /* the model keeps the piece's map as a chart of its own */
+                s = param_net_add_chart(r->param, head, solved, gain, &head);
+                p->tried = head;
+            }
+            mem_free(solved);
+            if (s != NEUV_OK) break;
             if (ok < 0) { s = error_nomem("chart check"); break; }
             p->net_qce = chart_qce_mean(p->sub, p->uv, NULL);
             if (ok && (s = unwrap_piece_lscm_qce(p)) != NEUV_OK) break;
@@ -365,29 +393,45 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                 p->mirrored = chk.mirrored;
                 continue;
             }
-            if (chk.flipped == 0 && chk.degenerate == 0 && p->net_depth < NET_SPLIT_DEPTH && p->sub->nf >= 2 &&
-                splits < m->nf) {
+            int can_solve = r->param && r->param->heads && r->param->uv_gain && r->param->psi_mode == PARAM_PSI_POOLED;
+            int refold = (chk.flipped > 0 || chk.degenerate > 0 || poor) && can_solve;
+            if (poor)
+                snprintf(why, sizeof why, "injective, but its output layer solved on the piece gives qce_mean %.3f, "
+                         "over %.2f times LSCM's %.3f", solved_qce, SOLVED_HEAD_MAX_QCE_RATIO, p->lscm_qce);
+            else
+                describe_failure(why, sizeof why, &chk);
+            if ((refold || (chk.flipped == 0 && chk.degenerate == 0 && !poor)) && p->net_depth < NET_SPLIT_DEPTH &&
+                p->sub->nf >= 2 && splits < m->nf) {
                 /* Locally injective but its boundary crosses itself: the
-                 * halves may each be injective under the same map. */
-                int before = r->n_charts, depth = p->net_depth + 1;
+                 * halves may each be injective under the same map. Folded:
+                 * the output layer solved on each half alone (as many weights
+                 * for fewer vertices) may not fold (refold). */
+                int before = r->n_charts, depth = p->net_depth + 1, solved = can_solve;
                 if ((s = charts_split(m, r->face_chart, &r->n_charts, c)) != NEUV_OK) break;
                 if ((s = rejoin_polygons(r, m, NULL, c, before)) != NEUV_OK) break;
                 splits++;
-                unwrap_add_repair(r, c, "the networks' map crossed the chart's own boundary (%d crossings); split "
-                                  "into %d charts, each checked under the same map", chk.boundary_crossings,
-                                  r->n_charts - before + 1);
+                if (refold) {
+                    unwrap_add_repair(r, c, "the networks' map %s (%s); split into %d charts, each taking the "
+                                      "same map or an output layer solved on it", poor ? "too distorted" : "folded",
+                                      why, r->n_charts - before + 1);
+                } else {
+                    unwrap_add_repair(r, c, "the networks' map crossed the chart's own boundary (%d crossings); split "
+                                      "into %d charts, each checked under the same map%s", chk.boundary_crossings,
+                                      r->n_charts - before + 1, solved ? " or an output layer solved on it" : "");
+                }
                 if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = error_nomem("charts"); break; }
                 for (int k = before; k <= r->n_charts; k++) {
                     chart_piece *q = &pieces[k < r->n_charts ? k : c];
                     q->from_split = q->net_split = 1;
                     q->net_head = head;
                     q->net_depth = depth;
+                    q->net_solved = solved;
                 }
                 c--;
                 continue;
             }
-            describe_failure(why, sizeof why, &chk);
-            unwrap_add_repair(r, c, "neural map folded (%s); re-flattened with LSCM", why);
+            unwrap_add_repair(r, c, poor ? "the networks' map too distorted (%s); re-flattened with LSCM"
+                                         : "neural map folded (%s); re-flattened with LSCM", why);
         }
         s = flatten_classic(corner_uv ? NEUV_METHOD_LSCM : classic, p);
         if (s != NEUV_OK) break;
@@ -737,7 +781,9 @@ static neuv_status param_by_networks(struct neuv_unwrap_result *r, const unwrap_
         param_net_options pp;
         param_net_default_options(&pp, o->preset == NEUV_PRESET_PAPER ? PARAM_PRESET_PAPER : PARAM_PRESET_FAST);
         pp.seed = o->seed;
-        pp.keep_model = keep_model;
+        /* Kept in any case: a chart the networks fold is split and their
+         * output layer solved on each piece (flatten_and_repair). */
+        pp.keep_model = 1;
         if (o->iters > 0) pp.iters = o->iters;
         param_net_report pr;
         memset(&pr, 0, sizeof pr);

@@ -154,6 +154,10 @@ void unwrap_add_repair(struct neuv_unwrap_result *r, int chart, const char *fmt,
  * halved before its pieces go to LSCM (training, and a simplified copy's
  * model applied to the full mesh). */
 #define NET_SPLIT_DEPTH 3
+/* A piece of a chart the networks folded keeps the map of an output layer
+ * solved on it only when that map's qce_mean is at most this many times
+ * LSCM's on the piece (bench/RESULTS.md, "Folded charts split"). */
+#define SOLVED_HEAD_MAX_QCE_RATIO 1.10
 
 typedef struct chart_piece {
     neuv_mesh *sub;
@@ -164,6 +168,8 @@ typedef struct chart_piece {
                         boundary only: the networks' map is checked again on it */
     int net_head;    /* with net_split: the network chart whose map it holds */
     int net_depth;   /* with net_split: splits since that network chart */
+    int net_solved;  /* with net_split: made by splitting a network chart whose map
+                        folded: the networks' output layer is solved on it anew */
     int net;         /* network chart whose map is kept, -1 otherwise */
     int tried;       /* network chart whose map was tried on it, kept or not, -1 none */
     int mirrored;    /* chart_uv_check mirrored it */
