@@ -5,7 +5,7 @@
  * compare what an embedding program gets (libgomp's default) with what the
  * CLI sets for itself (PASSIVE).
  *
- *   ./build/bench/bench_library_threads MESH [threads] [iters]
+ *   ./build/bench/bench_library_threads MESH [threads] [iters] [max_memory_mb]
  *
  * Prints one line: total, operators, patches, param, repair and pack
  * seconds. */
@@ -17,7 +17,7 @@
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        fprintf(stderr, "usage: bench_library_threads MESH [threads] [iters]\n");
+        fprintf(stderr, "usage: bench_library_threads MESH [threads] [iters] [max_memory_mb]\n");
         return 2;
     }
     neuv_mesh *mesh = NULL;
@@ -29,6 +29,7 @@ int main(int argc, char **argv)
     neuv_unwrap_options_init(&o);
     o.threads = argc > 2 ? atoi(argv[2]) : 2;
     o.iters = argc > 3 ? atoi(argv[3]) : 0;
+    o.max_memory_mb = argc > 4 ? atoi(argv[4]) : 0;
     o.use_cache = 0;
     neuv_atlas *a = NULL;
     neuv_status s = neuv_atlas_create(&a);

@@ -215,7 +215,7 @@ int main(void)
          * trained map (same rows, so the same float products). */
         double *uvi = malloc(sizeof(double) * 6 * (size_t)g2->nf);
         param_net_report ir;
-        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD, 0, uvi, &ir), NEUV_OK);
+        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD, 0, uvi, &ir, NULL), NEUV_OK);
         double worst = 0;
         for (long k = 0; k < 6L * g2->nf; k++) worst = fmax(worst, fabs(uvi[k] - uvf[k]));
         printf("inference on the training charts: largest UV difference %.3g\n", worst);
@@ -225,17 +225,31 @@ int main(void)
          * does on a shape it never saw): unfolded, and no more distorted than
          * the shared layer it starts from. */
         uv_metrics mh;
-        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD, 1, uvi, &ir), NEUV_OK);
+        param_net_model *shape = NULL;
+        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD, 1, uvi, &ir, &shape), NEUV_OK);
         CHECK(corner_metrics(g2, uvi, &mh) == 0);
         printf("inference with heads solved on the charts: qce_mean %.4f (shared layer %.4f), flipped %d\n",
                mh.qce_mean, mt.qce_mean, ir.flipped);
         CHECK_INT(ir.flipped, 0);
         CHECK(mh.qce_mean <= mt.qce_mean + 1e-9);
+        /* The shape model of these charts gives their inferred map again by
+         * plain inference at a corner of each chart. */
+        CHECK(shape != NULL && shape->borrowed && shape->n_charts == 2 && shape->heads != NULL);
+        for (int f = 0; shape && f < g2->nf; f += g2->nf - 1) {
+            double q[2];
+            const double *pt = g2->pos + 3 * g2->tri[3 * f];
+            CHECK_INT(param_net_apply(shape, ch[f], pt, 1, q), NEUV_OK);
+            CHECK_NEAR(q[0], uvi[6 * f], 1e-5);
+            CHECK_NEAR(q[1], uvi[6 * f + 1], 1e-5);
+        }
+        param_net_model_free(shape);
+        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD, 0, uvi, &ir, &shape), NEUV_OK);
+        CHECK(shape == NULL); /* the shared layer: no heads of these charts to keep */
         /* Features of another size, or a model without the standardization: refused. */
-        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD / 2, 1, uvi, NULL), NEUV_ERR_INPUT);
+        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD / 2, 1, uvi, NULL, NULL), NEUV_ERR_INPUT);
         double *shift = model->psi_shift;
         model->psi_shift = NULL;
-        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD, 1, uvi, NULL), NEUV_ERR_INPUT);
+        CHECK_INT(param_net_infer(model, g2, ch, 2, feat, FD, 1, uvi, NULL, NULL), NEUV_ERR_INPUT);
         model->psi_shift = shift;
 
         /* Fine-tuning starts from the model: one step's loss is the trained

@@ -965,11 +965,12 @@ static neuv_status solve_new_heads(const param_net_model *model, const train_dat
 
 neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, const int *face_chart, int n_charts,
                             const float *vertex_features, int feature_dim, int solve_heads, double *corner_uv,
-                            param_net_report *rep)
+                            param_net_report *rep, param_net_model **shape_model)
 {
     param_net_report local;
     if (!rep) rep = &local;
     memset(rep, 0, sizeof *rep);
+    if (shape_model) *shape_model = NULL;
     if (!model || !model->psi_shift || !model->psi_mul || model->psi_mode != PARAM_PSI_POOLED)
         return error_set(NEUV_ERR_INPUT, "this parameterization model holds no ψ standardization: it can only map "
                                          "the charts it was trained on");
@@ -1006,6 +1007,25 @@ neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, co
     }
     if (s == NEUV_OK)
         s = map_vertices(ctx, &with, &d, with.heads != NULL, mirror, gain, corner_uv, &rep->flipped, &rep->cycle_rms);
+    if (s == NEUV_OK && shape_model && with.heads) {
+        /* These charts' own frames, ψ, orientation, gains and heads over the model's networks. */
+        param_net_model *v = mem_alloc(sizeof *v);
+        if (!v) {
+            s = error_nomem("shape model");
+        } else {
+            *v = *model;
+            v->borrowed = 1;
+            v->n_charts = n_charts;
+            v->psi = d.psi; d.psi = NULL;
+            v->center = d.center; d.center = NULL;
+            v->scale = d.scale; d.scale = NULL;
+            v->rot = d.rot; d.rot = NULL;
+            v->mirror = mirror; mirror = NULL;
+            v->uv_gain = gain; gain = NULL;
+            v->heads = with.heads; with.heads = NULL;
+            *shape_model = v;
+        }
+    }
     mem_free(with.heads);
     mem_free(gain);
     nn_ctx_free(ctx);

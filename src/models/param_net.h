@@ -180,6 +180,9 @@ struct param_net_model {
     /* n_charts: the factor that brings each chart's map to its 3D area (uv =
      * uv_gain x MLP_f / scale); NULL in models saved before it (factor 1). */
     double *uv_gain;
+    /* 1: f, g, params, psi_shift and psi_mul are another model's (a shape
+     * model of param_net_infer); param_net_model_free leaves them. */
+    int borrowed;
 };
 
 void param_net_model_free(param_net_model *model);
@@ -195,12 +198,16 @@ void param_net_model_free(param_net_model *model);
  * shared output layer maps every chart.
  * Inputs:  as param_net_flatten (vertex_features: the same kind as in training)
  * Outputs: corner_uv #F by 3 by 2, as param_net_flatten; rep (may be NULL):
- *          flipped, cycle_rms, seconds
+ *          flipped, cycle_rms, seconds; shape_model (NULL: not wanted; only
+ *          with solve_heads): a model of these charts (their frames, ψ and
+ *          solved heads) that borrows `model`'s networks, so that
+ *          param_net_solve_head and param_net_add_chart work on them; free it
+ *          with param_net_model_free before `model`
  * Returns NEUV_OK, NEUV_ERR_INPUT (no standardization in the model, ψ size
  * mismatch, bad charts), NEUV_ERR_NOMEM or NEUV_ERR_INTERNAL. */
 neuv_status param_net_infer(const param_net_model *model, const neuv_mesh *m, const int *face_chart, int n_charts,
                             const float *vertex_features, int feature_dim, int solve_heads, double *corner_uv,
-                            param_net_report *rep);
+                            param_net_report *rep, param_net_model **shape_model);
 
 /* UVs of surface points of chart `chart_id` by inference (pooled ψ only: a
  * per-vertex model needs each point's features).

@@ -12,11 +12,14 @@
 void param_net_model_free(param_net_model *model)
 {
     if (!model) return;
-    param_mlp_free(&model->f);
-    param_mlp_free(&model->g);
-    nn_params_free(&model->params);
+    if (!model->borrowed) {
+        param_mlp_free(&model->f);
+        param_mlp_free(&model->g);
+        nn_params_free(&model->params);
+        mem_free(model->psi_shift); mem_free(model->psi_mul);
+    }
     mem_free(model->psi); mem_free(model->center); mem_free(model->scale); mem_free(model->rot); mem_free(model->mirror);
-    mem_free(model->psi_shift); mem_free(model->psi_mul); mem_free(model->heads); mem_free(model->uv_gain);
+    mem_free(model->heads); mem_free(model->uv_gain);
     mem_free(model);
 }
 

@@ -788,8 +788,10 @@ static neuv_status param_by_networks(struct neuv_unwrap_result *r, const unwrap_
         param_net_report pr;
         memset(&pr, 0, sizeof pr);
         if (category && finetune == 0) {
+            /* The shape model (this shape's charts over the category's
+             * networks) lets a folded chart's pieces get heads of their own. */
             s = param_net_infer(category->param, m, r->face_chart, r->n_charts, features, feature_dim,
-                                !r->model.shared_layer, corner_uv, &pr);
+                                !r->model.shared_layer, corner_uv, &pr, &pr.model);
         } else {
             if (category) { /* fine-tuning: the model's networks, trained `finetune` more steps */
                 pp.width = category->param->f.width;
@@ -812,6 +814,10 @@ static neuv_status param_by_networks(struct neuv_unwrap_result *r, const unwrap_
     int cap = 0;
     s = flatten_and_repair(r, m, corner_uv, &pieces, &cap);
     mem_free(corner_uv);
+    if (category && finetune == 0) { /* it borrows the category's networks: not kept past them */
+        param_net_model_free(r->param);
+        r->param = NULL;
+    }
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     if (s == NEUV_OK && keep_model) {
