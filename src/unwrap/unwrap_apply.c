@@ -947,11 +947,17 @@ neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model
 }
 
 
-/* 1 when map a of the chart is no worse than map b in angles (qce_mean)
- * and in area (L2 stretch). */
+/* 1 when map a of the chart is at most `factor` times worse than map b in
+ * angles (qce_mean) and in area (L2 stretch); factor 1: no worse. */
+static int within_map(const neuv_mesh *sub, const double *a, const double *b, double factor)
+{
+    return chart_qce_mean(sub, a, NULL) <= factor * chart_qce_mean(sub, b, NULL) &&
+           chart_l2_stretch(sub, a) <= factor * chart_l2_stretch(sub, b);
+}
+
 static int no_worse_map(const neuv_mesh *sub, const double *a, const double *b)
 {
-    return chart_qce_mean(sub, a, NULL) <= chart_qce_mean(sub, b, NULL) && chart_l2_stretch(sub, a) <= chart_l2_stretch(sub, b);
+    return within_map(sub, a, b, 1.0);
 }
 
 /* On the mesh a simplified copy's model is applied to (--train-faces), a
@@ -1101,12 +1107,13 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             md->param && md->param->heads) {
             /* The networks' map folded on the copy, where LSCM flattened the
              * chart: their head solved on this mesh may not fold. It takes
-             * the chart only when it is no worse than the copy's map carried
-             * here (`ext`) in angles (qce_mean) and in area (L2 stretch): an
-             * injective map can still squeeze a region (face.obj: a chart at
-             * L2 stretch 26.6 against 1.29). */
+             * the chart when it is at most 1.10 times worse than the copy's
+             * map carried here (`ext`, LSCM's there) in angles (qce_mean) and
+             * in area (L2 stretch), the bound that training's pieces of a
+             * folded chart meet: an injective map can still squeeze a region
+             * (face.obj: a chart at L2 stretch 26.6 against 1.29). */
             int got = solve_folded_head(p, md->param, md->chart_tried[mc], scratch, &mirror, &s);
-            mapped = got > 0 && no_worse_map(p->sub, p->uv, ext);
+            mapped = got > 0 && within_map(p->sub, p->uv, ext, SOLVED_HEAD_MAX_QCE_RATIO);
             if (mapped) net = md->chart_tried[mc];
             head_solved = mapped;
         }
