@@ -245,6 +245,9 @@ neuv_status param_net_solve_head(const param_net_model *model, int chart_id, con
  * Outputs: *id, the new chart's index (the old n_charts).
  * Returns NEUV_OK, NEUV_ERR_INPUT or NEUV_ERR_NOMEM (the model unchanged). */
 neuv_status param_net_add_chart(param_net_model *model, int parent, const float *head, double gain, int *id);
+/* 1 when param_net_add_chart can add charts to the model (pooled ψ, per-chart
+ * output layers and gains), 0 otherwise. */
+int param_net_can_add_chart(const param_net_model *model);
 
 /* Surface points of chart `chart_id` from UVs by MLP_f⁻¹ (the inverse map).
  * Inputs: uv #N by 2 (as param_net_apply returns). Outputs: points #N by 3, mesh units. */

@@ -134,7 +134,8 @@ neuv_status param_net_apply_inverse(const param_net_model *model, int chart_id, 
 }
 
 /* The core of param_net_apply_solved and param_net_solve_head: the solved
- * output layer into head_out (param_head_size floats), its gain into *gain_out. */
+ * output layer into head_out (param_head_size floats), its gain into
+ * *gain_out (either NULL: not wanted). */
 static neuv_status solve_head(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
                               float *head_out, double *gain_out, param_solve_report *rep)
 {
@@ -190,8 +191,8 @@ static neuv_status solve_head(const param_net_model *model, int chart_id, const 
         }
         double gain = fabs(auv) > 0 && a3 > 0 ? sqrt(a3 / fabs(auv)) : model->uv_gain ? model->uv_gain[chart_id] : 1;
         uv_from_net(model, chart_id, out, nv, gain, uv);
-        *gain_out = gain;
-        memcpy(head_out, head, sizeof(float) * (size_t)hs);
+        if (gain_out) *gain_out = gain;
+        if (head_out) memcpy(head_out, head, sizeof(float) * (size_t)hs);
     }
     param_solve_subdivided_free(&sub);
     param_corners_free(&corners);
@@ -203,14 +204,7 @@ static neuv_status solve_head(const param_net_model *model, int chart_id, const 
 neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
                                    param_solve_report *rep)
 {
-    if (!model || !model->heads || chart_id < 0 || chart_id >= model->n_charts)
-        return solve_head(model, chart_id, chart, uv, NULL, NULL, rep); /* its own error */
-    float *head = mem_alloc(sizeof(float) * (size_t)param_head_size(&model->f));
-    if (!head) return error_nomem("chart head");
-    double gain;
-    neuv_status s = solve_head(model, chart_id, chart, uv, head, &gain, rep);
-    mem_free(head);
-    return s;
+    return solve_head(model, chart_id, chart, uv, NULL, NULL, rep);
 }
 
 neuv_status param_net_solve_head(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
@@ -219,12 +213,16 @@ neuv_status param_net_solve_head(const param_net_model *model, int chart_id, con
     return solve_head(model, chart_id, chart, uv, head, gain, NULL);
 }
 
+int param_net_can_add_chart(const param_net_model *model)
+{
+    return model && model->heads && model->uv_gain && model->psi_mode == PARAM_PSI_POOLED;
+}
+
 neuv_status param_net_add_chart(param_net_model *model, int parent, const float *head, double gain, int *id)
 {
-    if (!model || !model->heads || !model->uv_gain || parent < 0 || parent >= model->n_charts)
-        return error_set(NEUV_ERR_INPUT, "chart %d cannot be derived: not in the model, or no output layers", parent);
-    if (model->psi_mode != PARAM_PSI_POOLED)
-        return error_set(NEUV_ERR_INPUT, "a per-vertex-feature model has no per-chart codes to derive a chart from");
+    if (!param_net_can_add_chart(model) || parent < 0 || parent >= model->n_charts)
+        return error_set(NEUV_ERR_INPUT, "chart %d cannot be derived: not in the model, or a model without per-chart "
+                                         "output layers, gains and codes", parent);
     int n = model->n_charts + 1, hs = param_head_size(&model->f), pd = model->psi_dim;
     float *psi = mem_realloc(model->psi, sizeof(float) * (size_t)n * (size_t)pd);
     if (psi) model->psi = psi;

@@ -343,7 +343,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
             int head = p->net_split ? p->net_head : c;
             p->tried = head;
             float *solved = NULL; /* a fold's piece: the output layer solved on it */
-            double gain = 1, solved_qce = NAN;
+            double gain = 1, piece_qce = NAN; /* qce_mean of p->uv once a net_solved piece is checked */
             int poor = 0; /* injective, but far less conformal than LSCM on the piece */
             piece_uv_from_corners(p, corner_uv);
             int ok = chart_uv_check_run(p->sub, p->uv, &chk);
@@ -352,8 +352,8 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
              * output layer solved on the piece, under the same bound. */
             if (ok > 0 && p->net_solved) {
                 if ((s = unwrap_piece_lscm_qce(p)) != NEUV_OK) break;
-                solved_qce = chart_qce_mean(p->sub, p->uv, NULL);
-                if (!(solved_qce <= SOLVED_HEAD_MAX_QCE_RATIO * p->lscm_qce)) ok = 0;
+                piece_qce = chart_qce_mean(p->sub, p->uv, NULL);
+                if (!(piece_qce <= SOLVED_HEAD_MAX_QCE_RATIO * p->lscm_qce)) ok = 0;
             }
             if (ok == 0 && p->net_solved) {
                 solved = mem_alloc(sizeof(float) * (size_t)param_head_size(&r->param->f));
@@ -361,8 +361,8 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                 if (s == NEUV_OK) ok = chart_uv_check_run(p->sub, p->uv, &chk);
                 if (s == NEUV_OK && ok > 0 && isnan(p->lscm_qce)) s = unwrap_piece_lscm_qce(p);
                 if (s != NEUV_OK) { mem_free(solved); break; }
-                solved_qce = chart_qce_mean(p->sub, p->uv, NULL);
-                if (ok > 0 && !(solved_qce <= SOLVED_HEAD_MAX_QCE_RATIO * p->lscm_qce)) { poor = 1; ok = 0; }
+                piece_qce = chart_qce_mean(p->sub, p->uv, NULL);
+                if (ok > 0 && !(piece_qce <= SOLVED_HEAD_MAX_QCE_RATIO * p->lscm_qce)) { poor = 1; ok = 0; }
             }
             if (ok > 0 && solved) { /* the model keeps the piece's map as a chart of its own */
                 s = param_net_add_chart(r->param, head, solved, gain, &head);
@@ -371,8 +371,8 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
             mem_free(solved);
             if (s != NEUV_OK) break;
             if (ok < 0) { s = error_nomem("chart check"); break; }
-            p->net_qce = chart_qce_mean(p->sub, p->uv, NULL);
-            if (ok && (s = unwrap_piece_lscm_qce(p)) != NEUV_OK) break;
+            p->net_qce = isnan(piece_qce) ? chart_qce_mean(p->sub, p->uv, NULL) : piece_qce;
+            if (ok && isnan(p->lscm_qce) && (s = unwrap_piece_lscm_qce(p)) != NEUV_OK) break;
             p->source = ok && r->opts.refine > 0 ? CHART_SOURCE_NETWORK_REFINED : CHART_SOURCE_NETWORK;
             if (ok && r->opts.refine > 0 && p->sub->nf <= REFINE_BATCH_FACES) {
                 if ((s = refine_conformal_step(p)) != NEUV_OK) break;
@@ -393,11 +393,11 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                 p->mirrored = chk.mirrored;
                 continue;
             }
-            int can_solve = r->param && r->param->heads && r->param->uv_gain && r->param->psi_mode == PARAM_PSI_POOLED;
+            int can_solve = param_net_can_add_chart(r->param);
             int refold = (chk.flipped > 0 || chk.degenerate > 0 || poor) && can_solve;
             if (poor)
                 snprintf(why, sizeof why, "injective, but its output layer solved on the piece gives qce_mean %.3f, "
-                         "over %.2f times LSCM's %.3f", solved_qce, SOLVED_HEAD_MAX_QCE_RATIO, p->lscm_qce);
+                         "over %.2f times LSCM's %.3f", piece_qce, SOLVED_HEAD_MAX_QCE_RATIO, p->lscm_qce);
             else
                 describe_failure(why, sizeof why, &chk);
             if ((refold || (chk.flipped == 0 && chk.degenerate == 0 && !poor)) && p->net_depth < NET_SPLIT_DEPTH &&
@@ -406,7 +406,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                  * halves may each be injective under the same map. Folded:
                  * the output layer solved on each half alone (as many weights
                  * for fewer vertices) may not fold (refold). */
-                int before = r->n_charts, depth = p->net_depth + 1, solved = can_solve;
+                int before = r->n_charts, depth = p->net_depth + 1;
                 if ((s = charts_split(m, r->face_chart, &r->n_charts, c)) != NEUV_OK) break;
                 if ((s = rejoin_polygons(r, m, NULL, c, before)) != NEUV_OK) break;
                 splits++;
@@ -417,7 +417,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                 } else {
                     unwrap_add_repair(r, c, "the networks' map crossed the chart's own boundary (%d crossings); split "
                                       "into %d charts, each checked under the same map%s", chk.boundary_crossings,
-                                      r->n_charts - before + 1, solved ? " or an output layer solved on it" : "");
+                                      r->n_charts - before + 1, can_solve ? " or an output layer solved on it" : "");
                 }
                 if (grow_pieces(&pieces, &cap, r->n_charts) != 0) { s = error_nomem("charts"); break; }
                 for (int k = before; k <= r->n_charts; k++) {
@@ -425,7 +425,7 @@ static neuv_status flatten_and_repair(struct neuv_unwrap_result *r, neuv_mesh *m
                     q->from_split = q->net_split = 1;
                     q->net_head = head;
                     q->net_depth = depth;
-                    q->net_solved = solved;
+                    q->net_solved = can_solve;
                 }
                 c--;
                 continue;
