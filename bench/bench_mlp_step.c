@@ -11,6 +11,7 @@
  * is the ratio of times. Medians of `runs` (default 7) after 2 warm-up runs;
  * a step and a reference pass alternate so both see the same machine load. */
 #include <cblas.h>
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -115,7 +116,7 @@ int main(int argc, char **argv)
     size_t grown = nn_ctx_grow_count(ctx) - grow_before;
     double ms = median(t_step, runs), mr = median(t_ref, runs);
     printf("MLP %d layers, %d -> %d -> %d, %zu parameters, batch %d, %d threads, median of %d\n", DEPTH, IN,
-           WIDTH, OUT, nn_params_count(&ps), BATCH, nn_get_threads(), runs);
+           WIDTH, OUT, nn_params_count(&ps), BATCH, omp_get_max_threads(), runs);
     printf("sgemm flops per step: %.3f GFLOP (loss %.4f)\n", flops * 1e-9, last_loss);
     printf("training step (fwd+bwd+Adam): %8.2f ms  %7.1f GFLOP/s\n", ms * 1e3, flops / ms * 1e-9);
     printf("plain cblas_sgemm, same shapes: %6.2f ms  %7.1f GFLOP/s\n", mr * 1e3, flops / mr * 1e-9);

@@ -1,4 +1,6 @@
 /* neuv command line: dispatches to one function per subcommand. */
+/* getloadavg is a BSD/GNU function, outside POSIX */
+#define _DEFAULT_SOURCE
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -43,21 +45,32 @@ static void usage(FILE *out)
                  "exit codes: 0 success, 2 bad input or usage, 1 internal error\n");
 }
 
-/* OpenMP threads that spin after a parallel loop (libgomp's default) starve
- * OpenBLAS's own threads on a 2-core machine: a training step measured 6x
- * slower with 2 threads than with 1. libgomp reads OMP_WAIT_POLICY once, when
- * it is loaded, so the CLI re-executes itself once with the passive policy
- * unless the user chose a policy. If exec fails, it simply runs as is. */
-static void prefer_passive_openmp(char **argv)
+/* How libgomp's idle threads wait after a parallel loop. It reads the
+ * policy once, when it is loaded, so the CLI re-executes itself once with
+ * its choice unless the user set OMP_WAIT_POLICY or GOMP_SPINCOUNT:
+ *   - cores free (1-minute load average below the cores less one half): a
+ *     brief spin, GOMP_SPINCOUNT=10000. A training step is hundreds of short
+ *     parallel loops; waking sleeping threads for each cost spot 16.6 s
+ *     against 14.1 s (300 steps, 2 threads, idle machine);
+ *   - cores busy: PASSIVE. Spinning threads take the cores the working ones
+ *     need: 26.4 s passive, 29.1 s with the brief spin, 33.5 s with libgomp's
+ *     default spin beside two busy processes (bench/RESULTS.md, "OpenMP wait
+ *     policy"). If exec fails, it simply runs as is. */
+static void choose_openmp_wait(char **argv)
 {
-    if (getenv("OMP_WAIT_POLICY")) return;
-    setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;
+    double load[1];
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    if (getloadavg(load, 1) == 1 && cores > 1 && load[0] < (double)cores - 0.5)
+        setenv("GOMP_SPINCOUNT", "10000", 1);
+    else
+        setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
     execv("/proc/self/exe", argv);
 }
 
 int main(int argc, char **argv)
 {
-    prefer_passive_openmp(argv);
+    choose_openmp_wait(argv);
     if (argc < 2) { usage(stderr); return 2; }
     const char *name = argv[1];
     if (!strcmp(name, "-h") || !strcmp(name, "--help") || !strcmp(name, "help")) { usage(stdout); return 0; }
