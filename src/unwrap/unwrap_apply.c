@@ -1116,6 +1116,22 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             mapped = got > 0 && within_map(p->sub, p->uv, ext, SOLVED_HEAD_MAX_QCE_RATIO);
             if (mapped) net = md->chart_tried[mc];
             head_solved = mapped;
+            if (s == NEUV_OK && got >= 0 && !mapped && depth[c] < NET_SPLIT_DEPTH && p->sub->nf >= 2 && splits < m->nf) {
+                int before = r->n_charts;
+                s = split_network_chart(r, c, cap, &model_chart, &depth);
+                splits++;
+                if (got)
+                    unwrap_add_repair(r, c, "the networks' head solved on this mesh was injective but not within %.2f "
+                                      "times the copy's map in qce_mean and L2 stretch; split into %d charts, each "
+                                      "solved again", SOLVED_HEAD_MAX_QCE_RATIO, r->n_charts - before + 1);
+                else
+                    unwrap_add_repair(r, c, "the networks' head solved on this mesh folded; split into %d charts, each "
+                                      "solved again", r->n_charts - before + 1);
+                mem_free(target); mem_free(scratch); mem_free(ext); mem_free(delta); mem_free(closest);
+                if (s != NEUV_OK) break;
+                c--;
+                continue;
+            }
         }
         if (s == NEUV_OK && net >= 0) {
             /* The networks learnt the chart, not what lies past its seam: a
