@@ -1,6 +1,5 @@
 /* neuv command line: dispatches to one function per subcommand. */
-/* getloadavg is a BSD/GNU function, outside POSIX */
-#define _DEFAULT_SOURCE
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -48,20 +47,59 @@ static void usage(FILE *out)
 /* How libgomp's idle threads wait after a parallel loop. It reads the
  * policy once, when it is loaded, so the CLI re-executes itself once with
  * its choice unless the user set OMP_WAIT_POLICY or GOMP_SPINCOUNT:
- *   - cores free (1-minute load average below the cores less one half): a
- *     brief spin, GOMP_SPINCOUNT=10000. A training step is hundreds of short
- *     parallel loops; waking sleeping threads for each cost spot 16.6 s
- *     against 14.1 s (300 steps, 2 threads, idle machine);
- *   - cores busy: PASSIVE. Spinning threads take the cores the working ones
- *     need: 26.4 s passive, 29.1 s with the brief spin, 33.5 s with libgomp's
- *     default spin beside two busy processes (bench/RESULTS.md, "OpenMP wait
- *     policy"). If exec fails, it simply runs as is. */
+ *   - no other task running (Linux's count of runnable tasks, the 4th
+ *     field of /proc/loadavg, less this process's own): a brief spin,
+ *     GOMP_SPINCOUNT=10000. A training step is hundreds of short parallel
+ *     loops; waking sleeping threads for each cost spot 17.1 s against
+ *     15.1 s (300 steps, 2 threads, idle machine);
+ *   - otherwise, or where that count cannot be read: PASSIVE. Spinning
+ *     threads take the cores the working ones need: 28.1 s passive, 31.4 s
+ *     with the brief spin, 56.6 s with libgomp's default spin beside two
+ *     busy processes (bench/RESULTS.md, "OpenMP wait policy").
+ * The count is of this instant, not the load average: a user's previous
+ * unwrap would keep that high for a minute after it ended. If exec fails,
+ * the command simply runs as is. */
+/* Runnable tasks of this process (its own threads: OpenBLAS starts its
+ * pool when it is loaded), from the state field of /proc/self/task/N/stat. */
+static int own_tasks_running(void)
+{
+    DIR *d = opendir("/proc/self/task");
+    if (!d) return 0;
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        if (e->d_name[0] == '.') continue;
+        char path[64], line[512];
+        snprintf(path, sizeof path, "/proc/self/task/%.20s/stat", e->d_name);
+        FILE *f = fopen(path, "r");
+        if (!f) continue;
+        size_t got = fread(line, 1, sizeof line - 1, f);
+        fclose(f);
+        line[got] = 0;
+        const char *close = strrchr(line, ')'); /* the state follows the command name in parentheses */
+        if (close && close[1] == ' ' && close[2] == 'R') n++;
+    }
+    closedir(d);
+    return n;
+}
+
+static int other_tasks_running(void)
+{
+    FILE *f = fopen("/proc/loadavg", "r");
+    int running = -1;
+    if (f) {
+        if (fscanf(f, "%*f %*f %*f %d/", &running) != 1) running = -1;
+        fclose(f);
+    }
+    if (running < 1) return -1;
+    int own = own_tasks_running();
+    return running - (own > 0 ? own : 1);
+}
+
 static void choose_openmp_wait(char **argv)
 {
     if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;
-    double load[1];
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    if (getloadavg(load, 1) == 1 && cores > 1 && load[0] < (double)cores - 0.5)
+    if (other_tasks_running() == 0)
         setenv("GOMP_SPINCOUNT", "10000", 1);
     else
         setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
