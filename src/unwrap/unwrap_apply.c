@@ -30,7 +30,8 @@
 
 /* Resolution of the atlas overlap test: the one of the overlap metric. */
 #define OVERLAP_RESOLUTION 2048
-#define MAX_SHRINK_ROUNDS 6
+#define MAX_SHRINK_ROUNDS 25
+#define SHRINK_STEP 0.98
 
 /* ---- charts by closest point ------------------------------------------ */
 
@@ -656,8 +657,9 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
 /* Shrinks charts that overlap a neighbour until the whole atlas has no
  * overlapped pixel centre (at the metric's resolution): of each
  * overlapping pair, the chart already off the model's layout (re-flattened
- * by a fold repair, or moved), else the smaller one, shrinks to 0.92 of its
- * size about its centroid, once per round. */
+ * by a fold repair, or moved), else the smaller one, shrinks to SHRINK_STEP
+ * of its size about its centroid, once per round: small steps, so that a
+ * chart moves no farther than the overlap needs. */
 static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *span)
 {
     neuv_mesh *m = r->mesh;
@@ -684,8 +686,8 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
             cx /= P->count;
             cy /= P->count;
             for (int i = P->first; i < P->first + P->count; i++) {
-                m->uv[2 * i] = cx + 0.92 * (m->uv[2 * i] - cx);
-                m->uv[2 * i + 1] = cy + 0.92 * (m->uv[2 * i + 1] - cy);
+                m->uv[2 * i] = cx + SHRINK_STEP * (m->uv[2 * i] - cx);
+                m->uv[2 * i + 1] = cy + SHRINK_STEP * (m->uv[2 * i + 1] - cy);
             }
             if (!shrunk[pick]) r->model.shrunk_charts++;
             shrunk[pick]++;
@@ -697,7 +699,7 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
     for (int c = 0; c < r->n_charts && s == NEUV_OK; c++)
         if (shrunk[c])
             unwrap_add_repair(r, c, "overlapped a neighbour in the atlas; shrunk to %.3f of its size about its centroid",
-                              pow(0.92, shrunk[c]));
+                              pow(SHRINK_STEP, shrunk[c]));
     mem_free(shrunk); mem_free(now);
     return s;
 }
