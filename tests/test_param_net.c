@@ -142,7 +142,17 @@ int main(void)
         double *before = malloc(sizeof(double) * 2 * (size_t)n), *after = malloc(sizeof(double) * 2 * (size_t)n);
         CHECK_INT(param_net_solve_head(r1.model, 0, half, su, head, &gain), NEUV_OK);
         CHECK_INT(param_net_apply_solved(r1.model, 0, half, sa, NULL), NEUV_OK);
-        CHECK(memcmp(su, sa, sizeof(double) * 2 * (size_t)n) == 0);
+        /* The kept head is also judged between the vertices (half the
+         * energy on the faces split in four); the map for this mesh alone
+         * is not: two different solves of the same start (on this 8x8 grid
+         * and a network trained for few steps, 0.33 of the span apart). */
+        double apart = 0, extent = 0;
+        for (int i = 0; i < 2 * n; i++) {
+            apart = fmax(apart, fabs(su[i] - sa[i]));
+            extent = fmax(extent, fabs(su[i]));
+        }
+        printf("kept head against this-mesh head: %.3g of the span\n", apart / extent);
+        CHECK(apart > 1e-3 * extent);
         CHECK(gain > 0);
         CHECK_INT(param_net_apply(r1.model, 0, grid->pos, n, before), NEUV_OK);
         int id = -1;

@@ -137,7 +137,7 @@ int main(void)
      * midpoints, the sub-faces carrying only the barrier. A 12x12 grid has
      * 12·13·2 + 12·12 = 456 edges. */
     param_solve_subdivided sub;
-    CHECK_INT(param_solve_subdivide(&one.d, &sub), NEUV_OK);
+    CHECK_INT(param_solve_subdivide(&one.d, 0, &sub), NEUV_OK);
     CHECK_INT(sub.d.nv, one.d.nv + 456);
     CHECK_INT(sub.d.nf, 5 * one.d.nf);
     int bad_mid = 0, bad_frame = 0;
@@ -157,6 +157,26 @@ int main(void)
     double gs = param_output_solve_gradient_error(&f, &sub.d, 1e-3, 40);
     printf("with the fold barrier on the subdivided faces: %.3g\n", gs);
     CHECK(gs < 1e-5);
+    param_solve_subdivided_free(&sub);
+
+    /* Half of each face's energy weight on its sub-faces: the face keeps
+     * half, each sub-face an eighth, the total is unchanged, and the
+     * gradient with energy rows on the sub-faces matches differences. */
+    CHECK_INT(param_solve_subdivide(&one.d, 0.5, &sub), NEUV_OK);
+    double w_in = 0, w_out = 0;
+    int bad_w = 0;
+    for (int f = 0; f < one.d.nf; f++) {
+        w_in += one.d.face_w[f];
+        bad_w += fabs(sub.d.face_w[f] - 0.5 * one.d.face_w[f]) > 1e-7;
+        for (int k = 0; k < 4; k++) bad_w += fabs(sub.d.face_w[one.d.nf + 4 * f + k] - 0.125 * one.d.face_w[f]) > 1e-7;
+        bad_w += fabs(sub.d.fold_w[one.d.nf + 4 * f] - 0.25 * one.d.face_w[f]) > 1e-9;
+    }
+    for (int f = 0; f < sub.d.nf; f++) w_out += sub.d.face_w[f];
+    CHECK_INT(bad_w, 0);
+    CHECK_NEAR(w_out, w_in, 1e-5 * w_in);
+    double gh = param_output_solve_gradient_error(&f, &sub.d, 1e-3, 40);
+    printf("with half the energy on the subdivided faces: %.3g\n", gh);
+    CHECK(gh < 1e-5);
     param_solve_subdivided_free(&sub);
     one.d.fold_weight = 0;
     one.d.fold_eps = 0;

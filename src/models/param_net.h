@@ -89,6 +89,10 @@ typedef struct param_net_options {
     /* With solve_fold: the barrier also holds on the faces split in four at
      * their edge midpoints (param_solve_subdivide; 0: the faces only). */
     int solve_subdivide;
+    /* With solve_subdivide: the share of each face's conformal energy weight
+     * that its four sub-faces carry (param_solve_subdivide), so that the
+     * solved map is judged between the vertices too (0: barrier only). */
+    double solve_subdivide_energy;
     double sigma;           /* L_iso pair radius in normalized units, 0.2 */
     double radius;          /* normalized geodesic radius of every chart, 0.6 */
     int iters;              /* iteration cap */
@@ -234,7 +238,10 @@ neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, c
 
 /* As param_net_apply_solved, also giving the solved output layer (head:
  * param_head_size(&model->f) floats) and the gain that brings its map to the
- * chart's 3D area: what param_net_add_chart needs to keep the map. */
+ * chart's 3D area: what param_net_add_chart needs to keep the map. Since the
+ * head is kept for other triangulations, its solve also weighs the conformal
+ * energy on the faces split in four (solve_subdivide_energy), which
+ * param_net_apply_solved, a map for this mesh alone, leaves out. */
 neuv_status param_net_solve_head(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
                                  float *head, double *gain);
 

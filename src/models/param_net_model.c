@@ -135,9 +135,13 @@ neuv_status param_net_apply_inverse(const param_net_model *model, int chart_id, 
 
 /* The core of param_net_apply_solved and param_net_solve_head: the solved
  * output layer into head_out (param_head_size floats), its gain into
- * *gain_out (either NULL: not wanted). */
+ * *gain_out (either NULL: not wanted). between: whether the sub-faces carry
+ * their share of the conformal energy (solve_subdivide_energy) besides the
+ * fold barrier: for a head kept in the model, whose map other
+ * triangulations will see; a map for this mesh alone needs only its own
+ * vertices judged (and costs a fifth of the rows). */
 static neuv_status solve_head(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
-                              float *head_out, double *gain_out, param_solve_report *rep)
+                              float *head_out, double *gain_out, int between, param_solve_report *rep)
 {
     param_solve_report local;
     if (!rep) rep = &local;
@@ -169,7 +173,8 @@ static neuv_status solve_head(const param_net_model *model, int chart_id, const 
         param_solve_data d = {nv, nf, 1, x, x, 3, vchart, model->psi + (size_t)chart_id * model->psi_dim,
                               model->psi_dim, 0, chart->tri, fchart, frame_inv, face_w, o.solve_fold,
                               o.solve_fold_eps, NULL, o.solve_mips, NULL, 0};
-        if (o.solve_subdivide && o.solve_fold > 0 && (s = param_solve_subdivide(&d, &sub)) == NEUV_OK) d = sub.d;
+        if (o.solve_subdivide && o.solve_fold > 0 && (s = param_solve_subdivide(&d, between ? o.solve_subdivide_energy : 0, &sub)) == NEUV_OK)
+            d = sub.d;
         if (s == NEUV_OK)
             s = param_output_solve_head_from(&model->f, &d, o.solve_anchor, o.solve_steps,
                                              model->heads + (size_t)chart_id * hs, head, rep);
@@ -204,13 +209,13 @@ static neuv_status solve_head(const param_net_model *model, int chart_id, const 
 neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
                                    param_solve_report *rep)
 {
-    return solve_head(model, chart_id, chart, uv, NULL, NULL, rep);
+    return solve_head(model, chart_id, chart, uv, NULL, NULL, 0, rep);
 }
 
 neuv_status param_net_solve_head(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
                                  float *head, double *gain)
 {
-    return solve_head(model, chart_id, chart, uv, head, gain, NULL);
+    return solve_head(model, chart_id, chart, uv, head, gain, 1, NULL);
 }
 
 int param_net_can_add_chart(const param_net_model *model)

@@ -1252,7 +1252,7 @@ void param_solve_subdivided_free(param_solve_subdivided *sd)
     memset(sd, 0, sizeof *sd);
 }
 
-neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivided *out)
+neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share, param_solve_subdivided *out)
 {
     memset(out, 0, sizeof *out);
     if (d->psi_per_vertex) return error_set(NEUV_ERR_INPUT, "subdivided solve data needs a pooled ψ");
@@ -1304,7 +1304,7 @@ neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivi
     memcpy(out->tri, d->tri, sizeof(int) * 3 * (size_t)nf);
     memcpy(out->fchart, d->fchart, sizeof(int) * (size_t)nf);
     memcpy(out->frame_inv, d->frame_inv, sizeof(float) * 4 * (size_t)nf);
-    memcpy(out->face_w, d->face_w, sizeof(float) * (size_t)nf);
+    for (int f = 0; f < nf; f++) out->face_w[f] = (float)((1 - energy_share) * d->face_w[f]);
     memcpy(out->fold_w, d->fold_w ? d->fold_w : d->face_w, sizeof(float) * (size_t)nf);
     for (int f = 0; f < nf; f++) {
         const int *t = d->tri + 3 * f;
@@ -1314,7 +1314,7 @@ neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivi
             int g = nf + 4 * f + k;
             memcpy(out->tri + 3 * g, sub[k], sizeof sub[k]);
             out->fchart[g] = d->fchart[f];
-            out->face_w[g] = 0;
+            out->face_w[g] = (float)(0.25 * energy_share * d->face_w[f]);
             out->fold_w[g] = 0.25f * (d->fold_w ? d->fold_w[f] : d->face_w[f]);
         }
     }

@@ -78,10 +78,12 @@ typedef struct param_solve_report {
 
 /* The data with every face also split in four at its edge midpoints: each
  * midpoint becomes a vertex (x and the inputs the mean of the edge's ends,
- * the face's chart), and the four sub-faces carry the fold barrier only
- * (face_w 0, fold_w a quarter of the face's), so that a solve keeps the map
- * unfolded between the vertices too, where a finer triangulation of the
- * surface has its own. The original vertices and faces come first, in order.
+ * the face's chart), and the four sub-faces carry the fold barrier (fold_w a
+ * quarter of the face's) and `energy_share` of the face's conformal energy
+ * weight (a quarter of that each; the face keeps the rest), so that a solve
+ * keeps the map unfolded, and close to conformal, between the vertices too,
+ * where a finer triangulation of the surface has its own. energy_share 0:
+ * the sub-faces carry the barrier only. The original vertices and faces come first, in order.
  * Needs a pooled ψ. Returns NEUV_OK, NEUV_ERR_INPUT or NEUV_ERR_NOMEM (free
  * with param_solve_subdivided_free; out->d views its arrays). */
 typedef struct param_solve_subdivided {
@@ -90,7 +92,7 @@ typedef struct param_solve_subdivided {
     int *vchart, *tri, *fchart;
 } param_solve_subdivided;
 
-neuv_status param_solve_subdivide(const param_solve_data *d, param_solve_subdivided *out);
+neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share, param_solve_subdivided *out);
 void param_solve_subdivided_free(param_solve_subdivided *sd);
 
 /* Floats per head: (width + 1) x 2, u's weights and bias then v's. */
