@@ -44,21 +44,6 @@ static void usage(FILE *out)
                  "exit codes: 0 success, 2 bad input or usage, 1 internal error\n");
 }
 
-/* How libgomp's idle threads wait after a parallel loop. It reads the
- * policy once, when it is loaded, so the CLI re-executes itself once with
- * its choice unless the user set OMP_WAIT_POLICY or GOMP_SPINCOUNT:
- *   - no other task running (Linux's count of runnable tasks, the 4th
- *     field of /proc/loadavg, less this process's own): a brief spin,
- *     GOMP_SPINCOUNT=10000. A training step is hundreds of short parallel
- *     loops; waking sleeping threads for each cost spot 17.1 s against
- *     15.1 s (300 steps, 2 threads, idle machine);
- *   - otherwise, or where that count cannot be read: PASSIVE. Spinning
- *     threads take the cores the working ones need: 28.1 s passive, 31.4 s
- *     with the brief spin, 56.6 s with libgomp's default spin beside two
- *     busy processes (bench/RESULTS.md, "OpenMP wait policy").
- * The count is of this instant, not the load average: a user's previous
- * unwrap would keep that high for a minute after it ended. If exec fails,
- * the command simply runs as is. */
 /* Runnable tasks of this process (its own threads: OpenBLAS starts its
  * pool when it is loaded), from the state field of /proc/self/task/N/stat. */
 static int own_tasks_running(void)
@@ -96,6 +81,21 @@ static int other_tasks_running(void)
     return running - (own > 0 ? own : 1);
 }
 
+/* How libgomp's idle threads wait after a parallel loop. It reads the
+ * policy once, when it is loaded, so the CLI re-executes itself once with
+ * its choice unless the user set OMP_WAIT_POLICY or GOMP_SPINCOUNT:
+ *   - no other task running (Linux's count of runnable tasks, the 4th
+ *     field of /proc/loadavg, less this process's own): a brief spin,
+ *     GOMP_SPINCOUNT=10000. A training step is hundreds of short parallel
+ *     loops; waking sleeping threads for each cost spot 17.1 s against
+ *     15.1 s (300 steps, 2 threads, idle machine);
+ *   - otherwise, or where that count cannot be read: PASSIVE. Spinning
+ *     threads take the cores the working ones need: 28.1 s passive, 31.4 s
+ *     with the brief spin, 56.6 s with libgomp's default spin beside two
+ *     busy processes (bench/RESULTS.md, "OpenMP wait policy").
+ * The count is of this instant, not the load average: a user's previous
+ * unwrap would keep that high for a minute after it ended. If exec fails,
+ * the command simply runs as is. */
 static void choose_openmp_wait(char **argv)
 {
     if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;

@@ -999,6 +999,14 @@ static int solve_head_on_mesh(chart_piece *p, const param_net_model *param, int 
     return *s == NEUV_OK ? take : -1;
 }
 
+/* Whether chart c, a network chart being mapped on this mesh, may be split
+ * once more for its pieces to be mapped again: fewer than NET_SPLIT_DEPTH
+ * splits deep, two faces at least, and the run's splits below its faces. */
+static int can_split_again(const int *depth, int c, const chart_piece *p, int splits, const neuv_mesh *m)
+{
+    return depth[c] < NET_SPLIT_DEPTH && p->sub->nf >= 2 && splits < m->nf;
+}
+
 /* Chart c of r split in two (charts_split) for its pieces to be mapped
  * again by the networks: the new charts come from the same model chart,
  * one split deeper. *model_chart and *depth (cap entries) grow when the
@@ -1118,7 +1126,7 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             mapped = got > 0 && within_map(p->sub, p->uv, ext, SOLVED_HEAD_MAX_QCE_RATIO);
             if (mapped) net = md->chart_tried[mc];
             head_solved = mapped;
-            if (s == NEUV_OK && got >= 0 && !mapped && depth[c] < NET_SPLIT_DEPTH && p->sub->nf >= 2 && splits < m->nf) {
+            if (s == NEUV_OK && got >= 0 && !mapped && can_split_again(depth, c, p, splits, m)) {
                 int before = r->n_charts;
                 s = split_network_chart(r, c, cap, &model_chart, &depth);
                 splits++;
@@ -1221,7 +1229,7 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
                      chk.degenerate, chk.boundary_crossings, chk.mirrored ? ", reversed orientation" : "");
             const char *how = "LSCM";
             if (o->refine_on_mesh && net >= 0 && chk.flipped == 0 && chk.degenerate == 0 && !chk.mirrored &&
-                depth[c] < NET_SPLIT_DEPTH && p->sub->nf >= 2 && splits < m->nf) {
+                can_split_again(depth, c, p, splits, m)) {
                 /* As training does on its own mesh: a network map that folds
                  * nowhere but crosses the chart's own boundary may be injective
                  * on each half; the halves are mapped again (their heads solved
