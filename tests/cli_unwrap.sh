@@ -87,7 +87,7 @@ else bad "unwrap --train-faces 1500 failed"; fi
 # to LSCM whole).
 if [ -n "${NEUV_SHARED:-}" ] && [ -f "$NEUV_SHARED/meshes/cow.obj" ]; then
   if "$NEUV" unwrap "$NEUV_SHARED/meshes/cow.obj" -o "$TMP/cowc.obj" --train-faces 2000 --refine 0 --threads 2 \
-       --report "$TMP/cowc.json" --quiet 2>/dev/null; then
+       --report "$TMP/cowc.json" --save-model "$TMP/cowc.neuv" --quiet 2>/dev/null; then
     check_outputs "$TMP/cowc.obj" "$TMP/cowc.json" "cow --train-faces 2000"
     "$PY" - "$TMP/cowc.json" <<'PYEOF' && ok || bad "--train-faces: a chart folded on the copy was not split and solved on the mesh"
 import json, sys
@@ -97,6 +97,12 @@ assert splits and all(x["chart"] >= 0 for x in splits), r["repairs"]
 assert pv["network_area_fraction"] > 0.93, pv
 assert r["metrics"]["flipped"] == 0 and r["metrics"]["overlap_fraction"] == 0, r["metrics"]
 PYEOF
+    # The model saved beside it (its networks carry the heads solved on the
+    # mesh's split pieces) loads and applies.
+    if "$NEUV" unwrap "$NEUV_SHARED/meshes/cow.obj" --model "$TMP/cowc.neuv" -o "$TMP/cowm.obj" --threads 2 \
+         --report "$TMP/cowm.json" --quiet; then
+      check_outputs "$TMP/cowm.obj" "$TMP/cowm.json" "cow --model (pieces' heads)"
+    else bad "a model saved with split pieces' heads does not apply"; fi
   else bad "unwrap cow --train-faces 2000 failed"; fi
 else
   echo "skip: ../shared/meshes/cow.obj not found, the full-mesh split case not run"

@@ -401,10 +401,16 @@ static neuv_status load_param(const nn_checkpoint *c, const char *h, unwrap_mode
 {
     long long nch, psi, width, depth;
     neuv_status s;
-    if ((s = header_int(h, "param_charts", m->category ? 0 : 1, m->n_charts, &nch)) ||
+    /* A surface model's networks may have more charts than its atlas: the
+     * pieces of a chart split on the full mesh of a source trained on a
+     * simplified copy keep heads of their own. Their count is bounded by the
+     * file's own ψ tensor (read before anything is sized by it). */
+    const nn_checkpoint_tensor *psi_t;
+    if ((s = header_int(h, "param_charts", m->category ? 0 : 1, m->category ? 0 : 1 << 20, &nch)) ||
         (s = header_int(h, "param_psi_dim", 1, 1 << 16, &psi)) ||
         (s = header_int(h, "param_width", 1, 1 << 14, &width)) ||
-        (s = header_int(h, "param_depth", 1, 64, &depth)))
+        (s = header_int(h, "param_depth", 1, 64, &depth)) ||
+        (nch > 0 && (s = want_tensor(c, "param.psi", (int)nch, (int)psi, &psi_t))))
         return s;
     long long heads = 0, gain = 0; /* per-chart output layers and UV scales (absent in older models) */
     if (header_value(h, "param_heads") && (s = header_int(h, "param_heads", 0, 1, &heads))) return s;
