@@ -1,6 +1,9 @@
 /* The packer's pixel machinery against plain per-pixel versions: footprint
  * turns and spans, marking with the padding, each row's longest free run,
- * and the lowest-then-leftmost place a footprint fits. */
+ * which of 64 placements of a run hit a taken pixel, and the
+ * lowest-then-leftmost place a footprint fits. */
+#include <math.h>
+
 #include "atlas/footprint.h"
 #include "atlas/occupancy.h"
 #include "check.h"
@@ -99,10 +102,12 @@ static int naive_free_run(const occupancy *o, int y)
     return best;
 }
 
-static void test_mark_and_find(rng *r, int size, int border, int pad)
+/* levels < 0: occupancy_init's own choice. */
+static void test_mark_and_find(rng *r, int size, int border, int pad, int levels)
 {
     occupancy o;
-    CHECK(occupancy_init(&o, size, border) == 0);
+    CHECK((levels < 0 ? occupancy_init(&o, size, border) : occupancy_init_levels(&o, size, border, levels)) == 0);
+    CHECK_INT(o.levels, levels < 0 ? OCCUPANCY_LEVELS : levels);
     unsigned char *naive = calloc((size_t)size * size, 1);
     for (int y = 0; y < size; y++)
         for (int x = 0; x < size; x++)
@@ -153,14 +158,58 @@ static void test_mark_and_find(rng *r, int size, int border, int pad)
     free(naive);
 }
 
+/* occupancy_run_blocked against a pixel-by-pixel scan, on an atlas of random
+ * rectangles, for every level count, run lengths from 1 to the whole row and
+ * starts up to the row's end (where placements past it count as blocked). */
+static void test_run_blocked(rng *r, int size)
+{
+    int bad = 0, blocked = 0, free_ = 0;
+    for (int levels = 0; levels <= OCCUPANCY_LEVELS; levels++) {
+        occupancy o;
+        CHECK(occupancy_init_levels(&o, size, 1, levels) == 0);
+        CHECK_INT(o.levels, levels);
+        /* A few random boxes, marked as one-row-span footprints grown by a padding of 0..2. */
+        for (int b = 0; b < 12; b++) {
+            footprint f;
+            random_footprint(r, 2 + (int)(rng_uniform(r) * size / 6), 2 + (int)(rng_uniform(r) * size / 6), &f);
+            footprint_spans s;
+            CHECK(footprint_to_spans(&f, &s) == 0);
+            occupancy_mark(&o, &s, (int)(rng_uniform(r) * size), (int)(rng_uniform(r) * size), b % 3);
+            footprint_spans_free(&s);
+            free(f.bits);
+        }
+        for (int t = 0; t < 3000; t++) {
+            int y = (int)(rng_uniform(r) * size);
+            int len = 1 + (int)(pow(rng_uniform(r), 3) * size); /* mostly short runs, some whole rows */
+            if (len > size) len = size;
+            int x = (int)(rng_uniform(r) * (size - len + 1));
+            uint64_t m = occupancy_run_blocked(&o, y, x, len);
+            for (int i = 0; i < 64; i++) {
+                int hit = 0;
+                for (int p = x + i; p < x + i + len && !hit; p++) hit = p >= size || occupancy_get(&o, p, y);
+                bad += hit != (int)(m >> i & 1);
+                if (x + i + len <= size) { blocked += hit; free_ += !hit; }
+            }
+        }
+        occupancy_free(&o);
+    }
+    CHECK_INT(bad, 0);
+    CHECK(blocked > 10000 && free_ > 10000); /* both answers were exercised inside the atlas */
+}
+
 int main(void)
 {
     rng r;
     rng_seed(&r, 7);
     test_rotate_and_spans(&r);
-    /* Sizes on and off the 64-pixel word, with and without padding. */
-    test_mark_and_find(&r, 150, 2, 2);
-    test_mark_and_find(&r, 128, 0, 0);
-    test_mark_and_find(&r, 200, 1, 3);
+    test_run_blocked(&r, 150);
+    test_run_blocked(&r, 256);
+    /* Sizes on and off the 64-pixel word, with and without padding; the
+     * search gives the same places with fewer blocked-run levels. */
+    test_mark_and_find(&r, 150, 2, 2, -1);
+    test_mark_and_find(&r, 128, 0, 0, -1);
+    test_mark_and_find(&r, 200, 1, 3, -1);
+    test_mark_and_find(&r, 150, 2, 2, 0);
+    test_mark_and_find(&r, 200, 1, 3, 2);
     return check_report("test_occupancy");
 }
