@@ -185,7 +185,8 @@ effect save --resolution "$P_RESOLUTION" 'same and cfg("s8.neuv")["resolution"] 
 effect save --padding "$P_PADDING" 'same and cfg("s9.neuv")["padding"] == 5' \
   --quiet "${LSCM[@]}" --padding 5 --save-model "$TMP/s9.neuv"
 effect save --allow-overlaps "$P_ALLOW_OVERLAPS" 'same' --quiet "${FOLDING[@]}" --allow-overlaps --save-model "$TMP/s10.neuv"
-effect save --train-faces "$P_TRAIN_FACES" 'same and cfg("s11.neuv")["source_faces"] < r["input_faces"]' \
+# A model saved with --train-faces is the full mesh's atlas (the copy's layout is nobody's texture).
+effect save --train-faces "$P_TRAIN_FACES" 'same and cfg("s11.neuv")["source_faces"] == r["faces"] and r["model"]["trained_on_simplified_copy"]' \
   --quiet "${LSCM[@]}" --train-faces 500 --save-model "$TMP/s11.neuv"
 effect save --no-cache L 'same and not r["patches"]["operators_cache_hit"]' \
   --quiet "${LSCM[@]}" --no-cache --save-model "$TMP/s12.neuv"

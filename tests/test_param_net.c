@@ -141,7 +141,7 @@ int main(void)
         double gain = 0, *su = malloc(sizeof(double) * 2 * (size_t)n), *sa = malloc(sizeof(double) * 2 * (size_t)n);
         double *before = malloc(sizeof(double) * 2 * (size_t)n), *after = malloc(sizeof(double) * 2 * (size_t)n);
         CHECK_INT(param_net_solve_head(r1.model, 0, half, su, head, &gain), NEUV_OK);
-        CHECK_INT(param_net_apply_solved(r1.model, 0, half, sa, NULL), NEUV_OK);
+        CHECK_INT(param_net_apply_solved(r1.model, 0, half, sa, NULL, NULL, NULL), NEUV_OK);
         /* The kept head is also judged between the vertices (half the
          * energy on the faces split in four); the map for this mesh alone
          * is not: two different solves of the same start (on this 8x8 grid

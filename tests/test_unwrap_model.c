@@ -90,7 +90,7 @@ int main(void)
 
         /* Applied to its own source mesh the model gives back the atlas exactly. */
         neuv_unwrap_result *again = NULL;
-        unwrap_apply_options ao = {1, 0, 0, 0, 0, 0};
+        unwrap_apply_options ao = {1, 0, 0, 0, 0, 0, 0, NULL};
         CHECK_INT(unwrap_apply(r->mesh, back, &ao, &again), NEUV_OK);
         if (again) {
             const neuv_mesh *a = r->mesh, *b = again->mesh;

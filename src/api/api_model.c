@@ -132,7 +132,7 @@ neuv_status neuv_atlas_apply_model(neuv_atlas *a, const neuv_model *m, const neu
             if (s != NEUV_OK) { neuv_unwrap_result_free(r); r = NULL; }
         }
     } else {
-        unwrap_apply_options ao = {o->threads, o->use_cache, o->check_inference, 0, o->lscm_baseline, 0};
+        unwrap_apply_options ao = {o->threads, o->use_cache, o->check_inference, 0, o->lscm_baseline, 0, 0, NULL};
         s = unwrap_apply(mesh, m->model, &ao, &r);
     }
     log_scope_close(&scope);

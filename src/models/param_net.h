@@ -230,11 +230,13 @@ neuv_status param_net_apply(const param_net_model *model, int chart_id, const do
  * features. Folds the learnt head leaves between the learnt triangulation's
  * vertices are what it removes. Needs a model with heads.
  * Inputs:  chart  positions in mesh units, triangles counter-clockwise
- * Outputs: uv     #chart->nv by 2, as param_net_apply; rep: the solve's
- *          energies and steps kept (NULL: not wanted)
+ * Outputs: uv     #chart->nv by 2, as param_net_apply; head, gain: the
+ *          solved output layer and its gain, as param_net_solve_head gives
+ *          them (either NULL: not wanted); rep: the solve's energies and
+ *          steps kept (NULL: not wanted)
  * Returns NEUV_OK, NEUV_ERR_INPUT (bad chart id, no heads) or NEUV_ERR_NOMEM. */
 neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
-                                   param_solve_report *rep);
+                                   float *head, double *gain, param_solve_report *rep);
 
 /* As param_net_apply_solved, also giving the solved output layer (head:
  * param_head_size(&model->f) floats) and the gain that brings its map to the

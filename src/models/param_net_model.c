@@ -207,9 +207,9 @@ static neuv_status solve_head(const param_net_model *model, int chart_id, const 
 }
 
 neuv_status param_net_apply_solved(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,
-                                   param_solve_report *rep)
+                                   float *head, double *gain, param_solve_report *rep)
 {
-    return solve_head(model, chart_id, chart, uv, NULL, NULL, 0, rep);
+    return solve_head(model, chart_id, chart, uv, head, gain, 0, rep);
 }
 
 neuv_status param_net_solve_head(const param_net_model *model, int chart_id, const neuv_mesh *chart, double *uv,

@@ -561,6 +561,12 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
             r->chart_tried[c] = r->chart_tried[parent[c]];
         }
     }
+    if (r->n_charts > before && r->frame_xf) {
+        atlas_chart_transform *xf = mem_realloc(r->frame_xf, sizeof *xf * (size_t)r->n_charts);
+        if (!xf) { mem_free(parent); return error_nomem("chart transforms"); }
+        r->frame_xf = xf;
+        for (int c = before; c < r->n_charts; c++) r->frame_xf[c] = r->frame_xf[parent[c]];
+    }
     mem_free(parent);
     return NEUV_OK;
 }
@@ -848,6 +854,16 @@ neuv_status unwrap_stage_param(struct neuv_unwrap_result *r, const unwrap_plan *
     return stage_end(r, s);
 }
 
+/* The transform that applies `first`, then `then`: then(first(u)) =
+ * s2 R2 (s1 R1 u + t1) + t2 = s1 s2 R(a1 + a2) u + then(t1). */
+static atlas_chart_transform compose_transforms(const atlas_chart_transform *first, const atlas_chart_transform *then)
+{
+    double t1[2] = {first->tx, first->ty}, t[2];
+    atlas_chart_transform_apply(then, t1, t);
+    atlas_chart_transform c = {first->scale * then->scale, first->angle + then->angle, t[0], t[1]};
+    return c;
+}
+
 /* Charts split where they pack badly, then packed afresh. */
 static neuv_status pack_afresh(struct neuv_unwrap_result *r)
 {
@@ -867,6 +883,11 @@ static neuv_status pack_afresh(struct neuv_unwrap_result *r)
     /* Pixels per unit of the mesh as packed: its positions may be scaled by 2^pos_exp. */
     pk.texels_per_unit = ldexp(o->texels_per_unit, -r->pos_exp);
     s = atlas_pack(m, r->face_chart, r->n_charts, &pk, r->transforms, &r->pack);
+    if (s == NEUV_OK && r->frame_xf) /* the networks' frame to the atlas: the frame's transform, then the packing's */
+        for (int c = 0; c < r->n_charts; c++)
+            r->transforms[c] = compose_transforms(&r->frame_xf[c], &r->transforms[c]);
+    mem_free(r->frame_xf);
+    r->frame_xf = NULL;
     unwrap_stage_time(r, STAGE_PACK, t);
     return s;
 }
@@ -926,6 +947,7 @@ neuv_status unwrap_result_clone(const struct neuv_unwrap_result *r, struct neuv_
     if (!c) return error_nomem("the result");
     *c = *r;
     c->chart_net = c->chart_mirrored = c->chart_tried = c->face_label = NULL;
+    c->frame_xf = NULL; /* lives only between the apply's parameterization and its packing */
     c->patchnet = NULL;
     c->param = NULL;
     int failed = 0;
@@ -1044,6 +1066,7 @@ void neuv_unwrap_result_free(neuv_unwrap_result *r)
     mesh_free(r->mesh);
     mem_free(r->face_chart);
     mem_free(r->transforms);
+    mem_free(r->frame_xf);
     mem_free(r->repairs);
     mem_free(r->chart_net);
     mem_free(r->chart_mirrored);

@@ -975,14 +975,15 @@ static int no_worse_map(const neuv_mesh *sub, const double *a, const double *b)
  * distortion only, and can squeeze a region the learnt map, trained with
  * L_iso, keeps (face.obj: a chart whose L∞ stretch doubled, and whose
  * refinement then stalled at qce 1.037 where the learnt map refined to
- * 1.017). Returns 1 when replaced, 0 when not, -1 on an error (*s set). */
+ * 1.017). head, gain: the solved head and its gain (NULL: not wanted).
+ * Returns 1 when replaced, 0 when not, -1 on an error (*s set). */
 static int solve_head_on_mesh(chart_piece *p, const param_net_model *param, int net, double *uv, double *scratch,
-                              neuv_status *s)
+                              float *head, double *gain, neuv_status *s)
 {
     int n = p->sub->nv;
     double *solved = mem_alloc(sizeof(double) * 2 * (size_t)n);
     if (!solved) { *s = error_nomem("chart head"); return -1; }
-    *s = param_net_apply_solved(param, net, p->sub, solved, NULL);
+    *s = param_net_apply_solved(param, net, p->sub, solved, head, gain, NULL);
     int take = 0;
     if (*s == NEUV_OK) {
         chart_uv_check chk;
@@ -1034,11 +1035,12 @@ static neuv_status split_network_chart(struct neuv_unwrap_result *r, int c, int 
  * so no network map of it is kept): the head they had for it, solved on
  * this mesh's triangles, into p->uv. Returns 1 when that map is usable
  * (*mirror: whether it must be mirrored to run counter-clockwise), 0 when
- * not, -1 on an error (*s set). */
+ * not, -1 on an error (*s set). w, gain: the solved head and its gain
+ * (NULL: not wanted). */
 static int solve_folded_head(chart_piece *p, const param_net_model *param, int head, double *scratch, int *mirror,
-                             neuv_status *s)
+                             float *w, double *gain, neuv_status *s)
 {
-    *s = param_net_apply_solved(param, head, p->sub, p->uv, NULL);
+    *s = param_net_apply_solved(param, head, p->sub, p->uv, w, gain, NULL);
     if (*s != NEUV_OK) return -1;
     chart_uv_check chk;
     memcpy(scratch, p->uv, sizeof(double) * 2 * (size_t)p->sub->nv);
@@ -1046,6 +1048,22 @@ static int solve_folded_head(chart_piece *p, const param_net_model *param, int h
     if (ok < 0) { *s = error_nomem("chart check"); return -1; }
     *mirror = chk.mirrored;
     return ok;
+}
+
+/* The result keeps, per chart, the network chart that maps it (-1: none)
+ * and its mirror flag (n_charts entries of net and mirror), as a training
+ * result does, so that a model can be made of it. */
+static neuv_status keep_chart_nets(struct neuv_unwrap_result *r, const int *net, const int *mirror)
+{
+    size_t n = (size_t)(r->n_charts > 0 ? r->n_charts : 1);
+    r->chart_net = mem_alloc(sizeof(int) * n);
+    r->chart_mirrored = mem_alloc(sizeof(int) * n);
+    r->chart_tried = mem_alloc(sizeof(int) * n);
+    if (!r->chart_net || !r->chart_mirrored || !r->chart_tried) return error_nomem("the model");
+    memcpy(r->chart_net, net, sizeof(int) * (size_t)r->n_charts);
+    memcpy(r->chart_mirrored, mirror, sizeof(int) * (size_t)r->n_charts);
+    memcpy(r->chart_tried, net, sizeof(int) * (size_t)r->n_charts);
+    return NEUV_OK;
 }
 
 neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model *md, const unwrap_apply_options *o)
@@ -1070,9 +1088,16 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
     int *depth = mem_calloc((size_t)cap, sizeof(int)); /* splits of a network chart whose map crossed its boundary */
     int *mc_grown = mem_realloc(model_chart, sizeof(int) * (size_t)cap);
     double **anchor = mem_calloc((size_t)cap, sizeof *anchor);
+    /* With keep_model: the network chart that maps each chart (-1: none)
+     * and its mirror flag, and the head solved on it. */
+    param_net_model *keep = o->keep_model ? o->keep_heads : NULL;
+    int *kept_net = mem_alloc(sizeof(int) * (size_t)cap), *kept_mirror = mem_calloc((size_t)cap, sizeof(int));
+    float *solved_w = keep ? mem_alloc(sizeof(float) * (size_t)param_head_size(&keep->f)) : NULL;
+    double solved_gain = 1;
     if (mc_grown) model_chart = r->model.source_chart = mc_grown;
-    if (!pieces || !repaired || !depth || !mc_grown || !anchor) {
+    if (!pieces || !repaired || !depth || !mc_grown || !anchor || !kept_net || !kept_mirror || (keep && !solved_w)) {
         mem_free(pieces); mem_free(repaired); mem_free(depth); mem_free(anchor);
+        mem_free(kept_net); mem_free(kept_mirror); mem_free(solved_w);
         return error_nomem("charts");
     }
     /* The source's refinement is carried over (its difference to the networks'
@@ -1092,7 +1117,11 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             if (nm) model_chart = r->model.source_chart = nm;
             double **na = mem_realloc(anchor, sizeof *na * (size_t)nc);
             if (na) { memset(na + cap, 0, sizeof *na * (size_t)(nc - cap)); anchor = na; }
-            if (!np || !nr || !nd || !nm || !na) { s = error_nomem("charts"); break; }
+            int *kn = mem_realloc(kept_net, sizeof(int) * (size_t)nc);
+            if (kn) kept_net = kn;
+            int *km = mem_realloc(kept_mirror, sizeof(int) * (size_t)nc);
+            if (km) kept_mirror = km;
+            if (!np || !nr || !nd || !nm || !na || !kn || !km) { s = error_nomem("charts"); break; }
             cap = nc;
         }
         chart_piece *p = &pieces[c];
@@ -1122,7 +1151,7 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
              * in area (L2 stretch), the bound that training's pieces of a
              * folded chart meet: an injective map can still squeeze a region
              * (face.obj: a chart at L2 stretch 26.6 against 1.29). */
-            int got = solve_folded_head(p, md->param, md->chart_tried[mc], scratch, &mirror, &s);
+            int got = solve_folded_head(p, md->param, md->chart_tried[mc], scratch, &mirror, solved_w, &solved_gain, &s);
             mapped = got > 0 && within_map(p->sub, p->uv, ext, SOLVED_HEAD_MAX_QCE_RATIO);
             if (mapped) net = md->chart_tried[mc];
             head_solved = mapped;
@@ -1153,7 +1182,7 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             double *at = p->uv;
             if (!mapped) s = param_net_apply(md->param, net, closest, n, at);
             if (s == NEUV_OK && !mapped && o->refine_on_mesh && md->param->heads)
-                head_solved = solve_head_on_mesh(p, md->param, net, at, scratch, &s) > 0;
+                head_solved = solve_head_on_mesh(p, md->param, net, at, scratch, solved_w, &solved_gain, &s) > 0;
             for (int v = 0; s == NEUV_OK && v < n; v++) {
                 if (vertex_chart[p->vmap[v]] == mc || o->refine_on_mesh) continue;
                 /* the extension, in the networks' own frame (before mirroring and placing) */
@@ -1311,6 +1340,11 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             r->model.heads_solved += head_solved;
         }
         if ((net < 0 || from_source || deviates) && !repaired[c]) r->model.transferred_charts++;
+        kept_net[c] = chart_source_is_network(p->source) ? net : -1;
+        kept_mirror[c] = kept_net[c] >= 0 && mirror;
+        /* A head solved here is the chart's map: kept as a network chart of its own. */
+        if (s == NEUV_OK && keep && kept_net[c] >= 0 && head_solved)
+            s = param_net_add_chart(keep, net, solved_w, solved_gain, &kept_net[c]);
         mem_free(target); mem_free(scratch);
     }
     r->model.refinement_carried = carry_refinement;
@@ -1318,6 +1352,10 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     mem_free(repaired);
     mem_free(depth);
+    mem_free(solved_w);
+    if (s == NEUV_OK && o->keep_model) s = keep_chart_nets(r, kept_net, kept_mirror);
+    mem_free(kept_net);
+    mem_free(kept_mirror);
     r->neural_charts = r->model.network_charts;
     unwrap_stage_time(r, STAGE_PARAM, t);
 
@@ -1329,6 +1367,11 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
     r->transforms = mem_calloc((size_t)(r->n_charts > 0 ? r->n_charts : 1), sizeof *r->transforms);
     if (s == NEUV_OK && !r->transforms) s = error_nomem("chart transforms");
     for (int c = 0; s == NEUV_OK && c < r->n_charts; c++) r->transforms[c] = md->xf[model_chart[c]];
+    if (s == NEUV_OK && o->keep_model) { /* the packing starts from the source atlas's frame: its transforms come first */
+        r->frame_xf = mem_alloc(sizeof *r->frame_xf * (size_t)(r->n_charts > 0 ? r->n_charts : 1));
+        if (!r->frame_xf) s = error_nomem("chart transforms");
+        else memcpy(r->frame_xf, r->transforms, sizeof *r->frame_xf * (size_t)r->n_charts);
+    }
     /* On a simplified copy's model the copy's layout does not matter, and
      * pulling corners flattens border faces (camelhead: qce_mean 1.020 ->
      * 1.027): the shrinking alone resolves overlaps there. */
@@ -1404,7 +1447,7 @@ neuv_status unwrap_apply(const neuv_mesh *mesh, const unwrap_model *md, const un
 {
     *out = NULL;
     if (!mesh || mesh->nf == 0) return error_set(NEUV_ERR_INPUT, "no faces: neuv needs a triangle mesh");
-    unwrap_apply_options def = {0, 1, 0, 0, 0, 0};
+    unwrap_apply_options def = {0, 1, 0, 0, 0, 0, 0, NULL};
     if (!o) o = &def;
     neuv_unwrap_options opts;
     opts_from_model(&opts, md);
@@ -1466,8 +1509,10 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
     s = unwrap_model_from_result(tr, &md);
     double train_seconds = now_seconds() - t;
     if (s == NEUV_OK) {
+        /* A model kept of this run is the full mesh's (below): the heads
+         * solved here join the copy's networks as charts of their own. */
         unwrap_apply_options ao = {opts ? opts->threads : 0, opts ? opts->use_cache : 1, 0, 1, 0,
-                                   opts ? opts->texels_per_unit : 0};
+                                   opts ? opts->texels_per_unit : 0, model_out != NULL, model_out ? md->param : NULL};
         s = unwrap_apply(mesh, md, &ao, out);
     }
     if (s == NEUV_OK) {
@@ -1493,7 +1538,20 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
         }
     }
     neuv_unwrap_result_free(tr);
-    if (s == NEUV_OK && model_out) *model_out = md;
-    else unwrap_model_free(md);
+    if (s == NEUV_OK && model_out) {
+        /* The model saved is the full mesh's atlas, not the copy's layout
+         * (nobody's texture): its charts, the packing's transforms composed
+         * with the copy's, and the networks trained on the copy with the
+         * heads solved here, so that applied to another triangulation it
+         * gives back this atlas. */
+        struct neuv_unwrap_result *r = *out;
+        r->param = md->param;
+        md->param = NULL;
+        r->patchnet = md->patchnet;
+        md->patchnet = NULL;
+        s = unwrap_model_from_result(r, model_out);
+        if (s) { neuv_unwrap_result_free(r); *out = NULL; }
+    }
+    unwrap_model_free(md);
     return s;
 }

@@ -65,6 +65,11 @@ typedef struct unwrap_apply_options {
     int lscm_baseline;    /* 1: a baseline, not the model's map: each chart flattened by LSCM on this
                            * mesh and placed by the least-squares similarity onto the model's map */
     double texels_per_unit; /* with refine_on_mesh (the fresh packing): as neuv_unwrap_options' (0: off) */
+    int keep_model;       /* with refine_on_mesh: a model of this mesh will be made of the result,
+                           * which then keeps which network chart maps each of its charts */
+    param_net_model *keep_heads; /* with keep_model: the model's own networks (the same as
+                                  * model->param; NULL for a classic method), to which each head
+                                  * solved on this mesh is added as a chart of its own */
 } unwrap_apply_options;
 
 /* Inputs:  mesh  any triangulation of the model's source surface (cleaned on a copy)

@@ -56,6 +56,10 @@ struct neuv_unwrap_result {
     int pack_splits;          /* charts cut so that the atlas packs better (atlas/pack_split.h) */
     int pack_split_trials;
     atlas_chart_transform *transforms; /* n_charts */
+    /* A model's apply keeping a model of this mesh (unwrap_apply_options.keep_heads):
+     * each chart's transform from its network's frame to its UVs before the fresh
+     * packing, which then composes it into `transforms` (NULL: none). */
+    atlas_chart_transform *frame_xf;
     atlas_pack_result pack;
     unwrap_repair *repairs;
     int n_repairs, cap_repairs;
