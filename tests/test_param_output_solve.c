@@ -137,7 +137,7 @@ int main(void)
      * midpoints, the sub-faces carrying only the barrier. A 12x12 grid has
      * 12·13·2 + 12·12 = 456 edges. */
     param_solve_subdivided sub;
-    CHECK_INT(param_solve_subdivide(&one.d, 0, &sub), NEUV_OK);
+    CHECK_INT(param_solve_subdivide(&one.d, 0, 0, &sub), NEUV_OK);
     CHECK_INT(sub.d.nv, one.d.nv + 456);
     CHECK_INT(sub.d.nf, 5 * one.d.nf);
     int bad_mid = 0, bad_frame = 0;
@@ -162,7 +162,7 @@ int main(void)
     /* Half of each face's energy weight on its sub-faces: the face keeps
      * half, each sub-face an eighth, the total is unchanged, and the
      * gradient with energy rows on the sub-faces matches differences. */
-    CHECK_INT(param_solve_subdivide(&one.d, 0.5, &sub), NEUV_OK);
+    CHECK_INT(param_solve_subdivide(&one.d, 0.5, 0, &sub), NEUV_OK);
     double w_in = 0, w_out = 0;
     int bad_w = 0;
     for (int f = 0; f < one.d.nf; f++) {
@@ -180,6 +180,37 @@ int main(void)
     param_solve_subdivided_free(&sub);
     one.d.fold_weight = 0;
     one.d.fold_eps = 0;
+
+    /* Charts of at least dense_vertices vertices keep the energy on their
+     * faces, the others share it. The two-chart grid has 91 vertices per
+     * chart (7 by 13); counted by vchart, so moving 5 of chart 1's vertex
+     * labels to chart 0 makes 96 and 86 without changing a face. */
+    {
+        int *vc = malloc(sizeof(int) * (size_t)two.d.nv), moved = 0;
+        for (int v = 0; v < two.d.nv; v++) {
+            vc[v] = two.d.vchart[v];
+            if (vc[v] == 1 && moved < 5) { vc[v] = 0; moved++; }
+        }
+        param_solve_data mixed = two.d;
+        mixed.vchart = vc;
+        for (int dense = 0; dense < 3; dense++) {
+            int at = dense == 0 ? 91 : dense == 1 ? 92 : 96; /* both dense, neither, chart 0 only */
+            param_solve_data *dd = dense == 2 ? &mixed : &two.d;
+            CHECK_INT(param_solve_subdivide(dd, 0.5, at, &sub), NEUV_OK);
+            int wrong = 0;
+            for (int f = 0; f < dd->nf; f++) {
+                int c = dd->fchart[f], is_dense = dense == 0 || (dense == 2 && c == 0);
+                double keep = is_dense ? 1 : 0.5, each = is_dense ? 0 : 0.125;
+                wrong += fabs(sub.d.face_w[f] - keep * dd->face_w[f]) > 1e-7;
+                for (int k = 0; k < 4; k++) wrong += fabs(sub.d.face_w[dd->nf + 4 * f + k] - each * dd->face_w[f]) > 1e-7;
+                wrong += fabs(sub.d.fold_w[dd->nf + 4 * f + 1] - 0.25 * dd->face_w[f]) > 1e-9; /* the barrier everywhere */
+            }
+            printf("dense charts from %d vertices: %d wrong weights\n", at, wrong);
+            CHECK_INT(wrong, 0);
+            param_solve_subdivided_free(&sub);
+        }
+        free(vc);
+    }
 
     /* Shared solve on one flat chart: a similarity is in reach of the features. */
     int fl0, fl1;

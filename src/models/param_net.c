@@ -19,6 +19,12 @@
 #include "models/param_output_solve.h"
 #include "nn/adam.h"
 
+int param_net_dense_vertices(const param_mlp *f, const param_net_options *o)
+{
+    double n = o->solve_subdivide_dense * (param_head_size(f) / 2);
+    return n > 0 && n < INT_MAX ? (int)ceil(n) : 0;
+}
+
 void param_net_default_options(param_net_options *o, param_preset preset)
 {
     *o = (param_net_options){0};
@@ -71,6 +77,10 @@ void param_net_default_options(param_net_options *o, param_preset preset)
      * vertices": spot's model on its jittered subdivision, mean UV distance
      * to the source atlas 2.08e-4 -> 8.4e-5). */
     o->solve_subdivide_energy = 0.5;
+    /* Charts of at least 4 vertices per output-layer feature (1680 at the
+     * fast preset's 420) keep the energy at their vertices: measured in
+     * bench/RESULTS.md, "Dense charts judged at their vertices". */
+    o->solve_subdivide_dense = 4;
     o->chart_heads = 1;
     o->solve_refit = 1;
     if (preset == PARAM_PRESET_PAPER) {
@@ -907,7 +917,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
                 param_solve_subdivided sub;
                 memset(&sub, 0, sizeof sub);
                 if (o->solve_subdivide && o->solve_fold > 0 && pooled) {
-                    s = param_solve_subdivide(&hd, o->solve_subdivide_energy, &sub);
+                    s = param_solve_subdivide(&hd, o->solve_subdivide_energy, param_net_dense_vertices(&model->f, o), &sub);
                     if (s == NEUV_OK) hd = sub.d;
                 }
                 if (s == NEUV_OK)
@@ -964,7 +974,9 @@ static neuv_status solve_new_heads(const param_net_model *model, const train_dat
     memset(&sub, 0, sizeof sub);
     neuv_status s = NEUV_OK;
     if (o->solve_refit && d->target) { sd.fit_uv = d->target; sd.fit_nv = d->nv; }
-    if (o->solve_subdivide && o->solve_fold > 0 && (s = param_solve_subdivide(&sd, o->solve_subdivide_energy, &sub)) == NEUV_OK) sd = sub.d;
+    if (o->solve_subdivide && o->solve_fold > 0 &&
+        (s = param_solve_subdivide(&sd, o->solve_subdivide_energy, param_net_dense_vertices(&model->f, o), &sub)) == NEUV_OK)
+        sd = sub.d;
     if (s == NEUV_OK) s = param_output_solve_heads(&model->f, &sd, o->solve_anchor, o->solve_steps, heads, NULL);
     param_solve_subdivided_free(&sub);
     return s;

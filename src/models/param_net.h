@@ -93,6 +93,11 @@ typedef struct param_net_options {
      * that its four sub-faces carry (param_solve_subdivide), so that the
      * solved map is judged between the vertices too (0: barrier only). */
     double solve_subdivide_energy;
+    /* Chart vertices per output-layer feature (param_head_size / 2) from
+     * which a chart's sub-faces carry the barrier only: its vertices already
+     * outnumber the weights that could bend the map between them, and its
+     * solve costs a fifth of the rows (0: every chart shares its energy). */
+    double solve_subdivide_dense;
     double sigma;           /* L_iso pair radius in normalized units, 0.2 */
     double radius;          /* normalized geodesic radius of every chart, 0.6 */
     int iters;              /* iteration cap */
@@ -144,6 +149,11 @@ typedef struct param_net_report {
  * layers, width 464: about 1.3·10^6 parameters per MLP, Adam 1e-3, the paper's
  * loss weights). */
 void param_net_default_options(param_net_options *o, param_preset preset);
+
+/* The chart size (vertices) from which heads solved for network f judge
+ * their map at the vertices alone (o->solve_subdivide_dense times f's
+ * output-layer features; 0: no such size). */
+int param_net_dense_vertices(const param_mlp *f, const param_net_options *o);
 
 /* Flattens every chart with one jointly trained pair of networks.
  *

@@ -1245,6 +1245,13 @@ static int edge_key_cmp(const void *p, const void *q)
     return (x->id > y->id) - (x->id < y->id);
 }
 
+/* The share of a face's conformal energy its sub-faces carry, in a chart of
+ * nv vertices (param_solve_subdivide). */
+static double chart_energy_share(int nv, double energy_share, int dense_vertices)
+{
+    return dense_vertices > 0 && nv >= dense_vertices ? 0 : energy_share;
+}
+
 void param_solve_subdivided_free(param_solve_subdivided *sd)
 {
     mem_free(sd->x); mem_free(sd->f_in); mem_free(sd->vchart); mem_free(sd->tri); mem_free(sd->fchart);
@@ -1252,7 +1259,8 @@ void param_solve_subdivided_free(param_solve_subdivided *sd)
     memset(sd, 0, sizeof *sd);
 }
 
-neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share, param_solve_subdivided *out)
+neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share, int dense_vertices,
+                                  param_solve_subdivided *out)
 {
     memset(out, 0, sizeof *out);
     if (d->psi_per_vertex) return error_set(NEUV_ERR_INPUT, "subdivided solve data needs a pooled ψ");
@@ -1282,8 +1290,9 @@ neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share
     out->face_w = mem_alloc(sizeof(float) * (size_t)NF);
     out->fold_w = mem_alloc(sizeof(float) * (size_t)NF);
     double *pos = mem_alloc(sizeof(double) * 3 * (size_t)NV);
+    int *chart_nv = mem_calloc((size_t)d->n_charts + 1, sizeof(int));
     neuv_status s = NEUV_OK;
-    if (!out->x || (d->f_in != d->x && !out->f_in) || !out->vchart || !out->tri || !out->fchart || !out->frame_inv ||
+    if (!chart_nv || !out->x || (d->f_in != d->x && !out->f_in) || !out->vchart || !out->tri || !out->fchart || !out->frame_inv ||
         !out->face_w || !out->fold_w || !pos) {
         s = error_nomem("subdivided solve data");
         goto done;
@@ -1304,7 +1313,12 @@ neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share
     memcpy(out->tri, d->tri, sizeof(int) * 3 * (size_t)nf);
     memcpy(out->fchart, d->fchart, sizeof(int) * (size_t)nf);
     memcpy(out->frame_inv, d->frame_inv, sizeof(float) * 4 * (size_t)nf);
-    for (int f = 0; f < nf; f++) out->face_w[f] = (float)((1 - energy_share) * d->face_w[f]);
+    for (int v = 0; v < nv; v++)
+        if (d->vchart[v] >= 0 && d->vchart[v] < d->n_charts) chart_nv[d->vchart[v]]++;
+    for (int f = 0; f < nf; f++) {
+        double share = chart_energy_share(chart_nv[d->fchart[f]], energy_share, dense_vertices);
+        out->face_w[f] = (float)((1 - share) * d->face_w[f]);
+    }
     memcpy(out->fold_w, d->fold_w ? d->fold_w : d->face_w, sizeof(float) * (size_t)nf);
     for (int f = 0; f < nf; f++) {
         const int *t = d->tri + 3 * f;
@@ -1314,7 +1328,8 @@ neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share
             int g = nf + 4 * f + k;
             memcpy(out->tri + 3 * g, sub[k], sizeof sub[k]);
             out->fchart[g] = d->fchart[f];
-            out->face_w[g] = (float)(0.25 * energy_share * d->face_w[f]);
+            double share = chart_energy_share(chart_nv[d->fchart[f]], energy_share, dense_vertices);
+            out->face_w[g] = (float)(0.25 * share * d->face_w[f]);
             out->fold_w[g] = 0.25f * (d->fold_w ? d->fold_w[f] : d->face_w[f]);
         }
     }
@@ -1342,7 +1357,7 @@ neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share
     out->d.face_w = out->face_w;
     out->d.fold_w = out->fold_w;
 done:
-    mem_free(e); mem_free(mid); mem_free(pos);
+    mem_free(e); mem_free(mid); mem_free(pos); mem_free(chart_nv);
     if (s != NEUV_OK) param_solve_subdivided_free(out);
     return s;
 }

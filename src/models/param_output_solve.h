@@ -83,7 +83,11 @@ typedef struct param_solve_report {
  * weight (a quarter of that each; the face keeps the rest), so that a solve
  * keeps the map unfolded, and close to conformal, between the vertices too,
  * where a finer triangulation of the surface has its own. energy_share 0:
- * the sub-faces carry the barrier only. The original vertices and faces come first, in order.
+ * the sub-faces carry the barrier only. Charts with at least
+ * `dense_vertices` vertices (> 0; 0: no such bound) carry the barrier only
+ * too: their vertices outnumber the output layer's weights, so the solve
+ * cannot bend between them (param_net_options.solve_subdivide_dense). The
+ * original vertices and faces come first, in order.
  * Needs a pooled ψ. Returns NEUV_OK, NEUV_ERR_INPUT or NEUV_ERR_NOMEM (free
  * with param_solve_subdivided_free; out->d views its arrays). */
 typedef struct param_solve_subdivided {
@@ -92,7 +96,8 @@ typedef struct param_solve_subdivided {
     int *vchart, *tri, *fchart;
 } param_solve_subdivided;
 
-neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share, param_solve_subdivided *out);
+neuv_status param_solve_subdivide(const param_solve_data *d, double energy_share, int dense_vertices,
+                                  param_solve_subdivided *out);
 void param_solve_subdivided_free(param_solve_subdivided *sd);
 
 /* Floats per head: (width + 1) x 2, u's weights and bias then v's. */
