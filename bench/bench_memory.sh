@@ -24,10 +24,11 @@
 # CGAL remesh of FILE to a quarter of its faces), so that it counts the same
 # faces as the other two paths. MAXMEM=MIB raises the up-front memory budget
 # (--max-memory; the library's max_memory_mb), for rows over half of the
-# machine's memory.
+# machine's memory. PATHS="cli library train" (the default) picks the paths
+# to run, for rows too long to run all three at once.
 set -eu
 B="$1"; OUT="${2:-/tmp/bench_memory}"; LEVELS="${3:-0 1 2}"; ITERS="${4:-5}"
-MESH="${MESH:-}"; MAXMEM="${MAXMEM:-0}"
+MESH="${MESH:-}"; MAXMEM="${MAXMEM:-0}"; PATHS="${PATHS:-cli library train}"
 NEUV="$B/neuv"; LIB="$B/bench/bench_library_threads"
 [ -x "$LIB" ] || cmake --build "$B" --target bench_library_threads >/dev/null
 mkdir -p "$OUT"
@@ -54,7 +55,7 @@ mesh_rows() {
     [ "$prev" -lt 1 ] || [ -f "$OUT/mesh-$prev.obj" ] || "$NEUV" remesh "$base" --subdivide "$prev" -o "$OUT/mesh-$prev.obj" >/dev/null
     faces=$(grep -c '^f ' "$m")
     tf=$((4 * $(grep -c '^f ' "$OUT/mesh-$prev.obj")))
-    for path in cli library train; do
+    for path in $PATHS; do
       case $path in
         cli) r=$(peak "$NEUV" unwrap "$m" -o "$OUT/out-$L.obj" --train-faces 0 --iters "$ITERS" --threads 1 --no-cache --quiet "${MEM[@]}") ;;
         library) r=$(peak "$LIB" "$m" 1 "$ITERS" "$MAXMEM") ;;
@@ -72,7 +73,7 @@ mesh_rows() {
 }
 summary() { # per path: KB per face of the last row over the first's
   echo
-  for path in cli library train; do
+  for path in $PATHS; do
     awk -v a="${first[$path]}" -v b="${last[$path]}" -v p="$path" \
       'BEGIN { printf "%s: KB per face, largest row / smallest row = %.2f\n", p, b / a }'
   done
@@ -95,7 +96,7 @@ for L in $LEVELS; do
   done
   mesh="$OUT/blob5-$L.obj"
   faces=$(grep -c '^f ' "$mesh")
-  for path in cli library train; do
+  for path in $PATHS; do
     case $path in
       cli) r=$(peak "$NEUV" unwrap "$mesh" -o "$OUT/out-$L.obj" --train-faces 0 --iters "$ITERS" --threads 1 --no-cache --quiet "${MEM[@]}") ;;
       library) r=$(peak "$LIB" "$mesh" 1 "$ITERS" "$MAXMEM") ;;
