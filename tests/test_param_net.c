@@ -92,6 +92,8 @@ int main(void)
     param_net_report rep;
     train(grid, "flat grid", &o, &mt, &rep, uv);
     CHECK_INT(rep.iters, ITERS);
+    /* A grid of fewer vertices than face points draws one face point per vertex. */
+    CHECK_INT(rep.face_points, grid->nv);
 #ifndef __SANITIZE_ADDRESS__
     CHECK_INT(mt.flipped, 0);
 #endif
@@ -108,6 +110,19 @@ int main(void)
     CHECK_INT(param_net_flatten(grid, chart, 1, NULL, 0, &d, uv1, &r1), NEUV_OK);
     CHECK_INT(param_net_flatten(grid, chart, 1, NULL, 0, &d, uv2, &r2), NEUV_OK);
     CHECK(memcmp(uv1, uv2, (size_t)grid->nf * 6 * sizeof(double)) == 0);
+    /* Face points: never below an eighth of the option's count, never above it. */
+    {
+        param_net_options fp = d;
+        fp.iters = fp.min_iters = 1;
+        fp.keep_model = 0;
+        param_net_report rf;
+        fp.face_points = 4096;
+        CHECK_INT(param_net_flatten(grid, chart, 1, NULL, 0, &fp, uv2, &rf), NEUV_OK);
+        CHECK_INT(rf.face_points, 512);
+        fp.face_points = 100;
+        CHECK_INT(param_net_flatten(grid, chart, 1, NULL, 0, &fp, uv2, &rf), NEUV_OK);
+        CHECK_INT(rf.face_points, 100);
+    }
     CHECK(r1.model != NULL);
     if (r1.model) {
         double p[3], q[2], back[3];

@@ -104,7 +104,7 @@ typedef struct param_net_options {
     int min_iters;          /* no plateau stop before this */
     int plateau_window;     /* iterations per window of the plateau test */
     double plateau_tol;     /* stop when a window's mean loss improves by less than this share */
-    int face_points;        /* random points inside faces per step (L_cycle) */
+    int face_points;        /* random points inside faces per step (L_cycle); fewer, down to an eighth, on charts of fewer vertices in all */
     int iso_pairs;          /* geodesic pairs per step (all when there are fewer) */
     /* Geodesic pairs kept for L_iso over all charts, so that memory is linear
      * in the mesh: each chart's pairs come from budget / (chart vertices in
@@ -128,6 +128,7 @@ typedef struct param_net_options {
 
 typedef struct param_net_report {
     int iters;              /* iterations run */
+    int face_points;        /* face points drawn per step (param_net_options.face_points, fewer on small charts) */
     int stopped_on_plateau;
     long parameters;        /* per MLP (both have nearly the same count; this is MLP_f) */
     double loss, loss_cycle, loss_iso, loss_angle, loss_area; /* last step, unweighted terms */

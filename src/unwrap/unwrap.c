@@ -808,6 +808,7 @@ static neuv_status param_by_networks(struct neuv_unwrap_result *r, const unwrap_
             s = param_net_flatten(m, r->face_chart, r->n_charts, features, feature_dim, &pp, corner_uv, &pr);
         }
         r->param_iterations = pr.iters;
+        r->param_face_points = pr.face_points;
         r->param_loss = pr.loss;
         r->param = pr.model;
     }

@@ -1526,6 +1526,7 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
         r->patch_iterations = tr->patch_iterations;
         r->patch_iters_per_second = tr->patch_iters_per_second;
         r->param_iterations = tr->param_iterations;
+        r->param_face_points = tr->param_face_points;
         r->param_loss = tr->param_loss;
         r->total_seconds += train_seconds;
         for (int i = 0; i < tr->n_repairs; i++)

@@ -42,6 +42,7 @@ struct neuv_unwrap_result {
     int patch_reseeds;        /* emptied patches re-seeded in training */
     double patch_iters_per_second;
     int param_iterations;
+    int param_face_points;    /* face points per training step (param_net_report.face_points) */
     double param_loss;
     int neural_charts;        /* charts the networks mapped injectively (source network or network+refined) */
     /* Provenance (n_charts each, chart_source.h): where each chart's final map

@@ -245,6 +245,7 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "param");
     json_begin_object(&w);
     json_key(&w, "iterations"); json_int(&w, r->param_iterations);
+    json_key(&w, "face_points"); json_int(&w, r->param_face_points);
     json_key(&w, "final_loss"); json_number(&w, r->param_loss);
     json_key(&w, "network_charts"); json_int(&w, r->neural_charts);
     json_key(&w, "refine_steps"); json_int(&w, r->refine_steps);
