@@ -1,5 +1,8 @@
 /* UV comparison: a map against itself, against its midpoint subdivision,
  * against a shifted copy, and against maps whose charts differ. */
+#include <string.h>
+
+#include "neuv/neuv.h"
 #include "check.h"
 #include "compare/uv_compare.h"
 #include "mesh/shapes.h"
@@ -125,6 +128,30 @@ int main(void)
     CHECK(r.uv_mean < 1e-3);
     CHECK(r.across_seam > 0.02);
     mesh_free(fa); mesh_free(fb);
+
+    /* The public call welds identical positions first: a copy whose every
+     * face has vertices of its own (a file that repeats vertices at its
+     * patches' borders) still has the two charts, and the same map. */
+    {
+        neuv_mesh *split = mesh_create(3 * a->nf, a->nf, 0);
+        for (int c = 0; c < 3 * a->nf; c++) {
+            memcpy(split->pos + 3 * c, a->pos + 3 * a->tri[c], sizeof(double) * 3);
+            split->tri[c] = c;
+        }
+        CHECK_INT(mesh_set_uv(split, a->nuv, a->uv, a->tri_uv), NEUV_OK);
+        neuv_uv_comparison cmp;
+        CHECK_INT(neuv_compare_uvs(a, split, NULL, &cmp), NEUV_OK);
+        CHECK_INT(cmp.charts_b, 2);
+        CHECK_NEAR(cmp.chart_agreement, 1, 0);
+        CHECK(cmp.uv_max == 0);
+        CHECK_INT(cmp.vertices_compared, 17 * 17 + 17);
+        CHECK_INT(neuv_compare_uvs(split, a, NULL, &cmp), NEUV_OK);
+        CHECK_INT(cmp.charts_a, 2);
+        CHECK_NEAR(cmp.chart_agreement, 1, 0);
+        CHECK(cmp.uv_max == 0);
+        CHECK_INT(split->nv, 3 * a->nf); /* the caller's mesh is not welded */
+        mesh_free(split);
+    }
 
     /* Bad inputs. */
     neuv_mesh *plain = shape_grid(2, 2, 1, 1, 0);

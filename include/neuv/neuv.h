@@ -891,15 +891,17 @@ typedef struct neuv_uv_comparison {
     double max_surface_distance; /* largest distance of a compared B vertex to A's surface */
     int worst_count;           /* entries of worst in use */
     neuv_chart_mismatch worst[NEUV_WORST_CHARTS]; /* largest mean UV distance first */
-    neuv_metrics b_metrics;    /* of B's UVs as B holds them (not welded first) */
+    neuv_metrics b_metrics;    /* of B's UVs, its identical positions welded as neuv_evaluate does */
 } neuv_uv_comparison;
 
 /* UV consistency of two UV maps of the same surface, possibly on two
  * triangulations of it (docs/transfer.md "Measuring it"): for every corner
  * of B, A's UV at the same point of the surface, in the A chart matched to
  * B's chart (past that chart's seam, its map extended), and how much of B's
- * surface lies in the chart matched to its own. Messages to cb (may be
- * NULL). NEUV_ERR_INPUT when a mesh has no faces or no UVs. */
+ * surface lies in the chart matched to its own. Charts are found across
+ * shared edges after identical positions are welded (in copies: a and b are
+ * not changed), as neuv_evaluate finds them. Messages to cb (may be NULL).
+ * NEUV_ERR_INPUT when a mesh has no faces or no UVs. */
 NEUV_API neuv_status neuv_compare_uvs(const neuv_mesh *a, const neuv_mesh *b, const neuv_callbacks *cb,
                                       neuv_uv_comparison *out);
 /* A comparison as a JSON document, naming the two files. Release with

@@ -6,6 +6,8 @@
 #include "compare/uv_compare.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "mesh/clean.h"
+#include "mesh/mesh.h"
 #include "metrics/uv_metrics.h"
 
 _Static_assert(NEUV_WORST_CHARTS == UV_COMPARE_WORST, "public and internal worst-chart counts differ");
@@ -15,11 +17,21 @@ neuv_status neuv_compare_uvs(const neuv_mesh *a, const neuv_mesh *b, const neuv_
     if (!a || !b || !out) return error_set(NEUV_ERR_INPUT, "neuv_compare_uvs: no mesh or no output");
     uv_compare_result r;
     uv_metrics mb;
+    /* Charts are found across shared edges, as neuv_evaluate finds them: a
+     * file that repeats a vertex at each of its patches' borders (the Utah
+     * teapot's) would otherwise count every patch as a chart of its own, and
+     * the matched-chart distance and the chart agreement would compare
+     * patches, not charts. Welding merges only identical positions. */
+    neuv_mesh *wa = mesh_clone(a), *wb = mesh_clone(b);
+    neuv_status s = !wa || !wb || mesh_weld_positions(wa) < 0 || mesh_weld_positions(wb) < 0
+                        ? error_nomem("welding vertices") : NEUV_OK;
     log_scope scope;
     log_scope_open(&scope, cb);
-    neuv_status s = uv_compare(a, b, &r);
-    if (s == NEUV_OK) s = uv_metrics_compute(b, &mb);
+    if (s == NEUV_OK) s = uv_compare(wa, wb, &r);
+    if (s == NEUV_OK) s = uv_metrics_compute(wb, &mb);
     log_scope_close(&scope);
+    mesh_free(wa);
+    mesh_free(wb);
     if (s != NEUV_OK) return s;
     memset(out, 0, sizeof *out);
     out->uv_mean = r.uv_mean;
