@@ -27,6 +27,7 @@
 #include "spatial/bvh.h"
 #include "spatial/triangle_closest_point.h"
 #include "unwrap/unwrap_internal.h"
+#include "unwrap/uv_pull_ease.h"
 
 /* Resolution of the atlas overlap test: the one of the overlap metric. */
 #define OVERLAP_RESOLUTION 2048
@@ -630,6 +631,7 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
                 moved++;
             }
             if (moved == 0) continue;
+            uv_pull_ease(p->sub, keep, uv);
             memcpy(p->uv, uv, sizeof(double) * 2 * (size_t)n);
             chart_uv_check chk;
             int ok = uv_usable(p, p->uv, scratch, &chk);
