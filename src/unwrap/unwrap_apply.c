@@ -584,7 +584,8 @@ static neuv_status chart_spans(const struct neuv_unwrap_result *r, chart_span **
  * (the ones whose closest source point lies in another chart) of a chart
  * that overlaps another or leaves [0,1]^2 are pulled toward the source UV
  * at their closest point ON their chart, which lies inside the island:
- * first to half the packing's gap from it, then onto it. A pull that would
+ * first to half the packing's gap from it, then onto it. Faces a pull
+ * collapses or folds have it eased (uv_pull_ease); a pull that would still
  * fold the chart is relaxed locally, else undone (the chart is then left to
  * resolve_overlaps). pieces[c].uv and anchor[c] are per piece vertex, in
  * the atlas frame. */
