@@ -394,12 +394,6 @@ static void transform_uvs(double *uv, int n, const atlas_chart_transform *xf)
     }
 }
 
-static double tri_uv_area2(const double *uv, const int *t)
-{
-    const double *a = uv + 2 * t[0], *b = uv + 2 * t[1], *c = uv + 2 * t[2];
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-}
-
 /* Local repair of a few folded faces: the inner vertices of non-positive
  * faces move to the mean of their chart neighbours (one Tutte step), a few
  * rounds, so the rest of the chart keeps the model's UVs exactly. Returns 1
@@ -433,7 +427,7 @@ static int relax_folds(chart_piece *p, double *scratch)
         memset(hot, 0, (size_t)nv);
         int any = 0;
         for (int f = 0; f < nf; f++)
-            if (tri_uv_area2(p->uv, c->tri + 3 * f) <= 0)
+            if (uv_face_area2(p->uv, c->tri + 3 * f) <= 0)
                 for (int k = 0; k < 3; k++) { hot[c->tri[3 * f + k]] = 1; any = 1; }
         if (!any) { ok = uv_usable(p, p->uv, scratch, &chk); break; }
         /* Grow by one ring so the neighbours can make room. */

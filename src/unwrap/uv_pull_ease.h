@@ -22,8 +22,11 @@
  * from where it was). A pull that folded a face was undone whole before, for
  * the whole chart; eased, the rest of it stays (measured against easing the
  * collapsed faces only: same bench). Faces not positive in uv0 are left to
- * the fold checks. uv0: sub's UVs
- * before the pull; uv: after it, eased in place. Returns the corners eased. */
+ * the fold checks. uv0: sub's UVs before the pull; uv: after it, eased in
+ * place. Returns the corners eased. */
 int uv_pull_ease(const neuv_mesh *sub, const double *uv0, double *uv);
+
+/* Twice the signed area of triangle t (three indices) in uv (two per index). */
+double uv_face_area2(const double *uv, const int *t);
 
 #endif
