@@ -112,7 +112,7 @@ static void test_mark_and_find(rng *r, int size, int border, int pad, int levels
     for (int y = 0; y < size; y++)
         for (int x = 0; x < size; x++)
             naive[(size_t)y * size + x] = x < border || y < border || x >= size - border || y >= size - border;
-    int bad_mark = 0, bad_run = 0, bad_find = 0, found = 0;
+    int bad_mark = 0, bad_run = 0, bad_find = 0, found = 0, bad_nearest = 0, near_found = 0;
     for (int step = 0; step < 25; step++) {
         footprint f;
         random_footprint(r, 3 + (int)(rng_uniform(r) * size / 4), 3 + (int)(rng_uniform(r) * size / 4), &f);
@@ -130,6 +130,22 @@ static void test_mark_and_find(rng *r, int size, int border, int pad, int levels
             }
         int x, y, ok = occupancy_find(&o, &s, size, &x, &y);
         bad_find += ok != (by >= 0) || (ok && (x != bx || y != by));
+        /* The fit nearest to a random point, pixel by pixel (ties: lower y, then lower x). */
+        int px = (int)(rng_uniform(r) * size), py = (int)(rng_uniform(r) * size), nx = -1, ny = -1;
+        long long nd = -1;
+        for (int yy = 0; yy + f.h <= size; yy++)
+            for (int xx = 0; xx + f.w <= size; xx++) {
+                long long dd = (long long)(xx - px) * (xx - px) + (long long)(yy - py) * (yy - py);
+                if (nd >= 0 && dd >= nd) continue;
+                int fits = 1;
+                for (int j = 0; j < f.h && fits; j++)
+                    for (int i = 0; i < f.w && fits; i++)
+                        fits = !f.bits[(size_t)j * f.w + i] || !naive[(size_t)(yy + j) * size + xx + i];
+                if (fits) { nd = dd; nx = xx; ny = yy; }
+            }
+        int qx, qy, qok = occupancy_find_nearest(&o, &s, px, py, &qx, &qy);
+        bad_nearest += qok != (nx >= 0) || (qok && (qx != nx || qy != ny));
+        near_found += qok;
         if (!ok) { x = (int)(rng_uniform(r) * size) - f.w / 2; y = (int)(rng_uniform(r) * size) - f.h / 2; }
         else found++;
         /* Marked with the padding, anywhere (partly outside the atlas too). */
@@ -153,6 +169,8 @@ static void test_mark_and_find(rng *r, int size, int border, int pad, int levels
     CHECK_INT(bad_mark, 0);
     CHECK_INT(bad_run, 0);
     CHECK_INT(bad_find, 0);
+    CHECK_INT(bad_nearest, 0);
+    CHECK(near_found >= 5);
     CHECK(found >= 5); /* the search was exercised on real fits, not only misses */
     occupancy_free(&o);
     free(naive);

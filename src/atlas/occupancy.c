@@ -172,6 +172,16 @@ static uint64_t placements_free(const occupancy *o, const footprint_spans *s, in
     return m;
 }
 
+/* 1 when every footprint row of s is at most as wide as the longest free run of its atlas row at y. */
+static int rows_may_fit(const occupancy *o, const footprint_spans *s, int y)
+{
+    for (int t = 0; t < s->h; t++) {
+        int r = s->row_order[t];
+        if (s->row_width[r] > o->free_run[y + r]) return 0;
+    }
+    return 1;
+}
+
 int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int *ox, int *oy)
 {
     if (s->w > o->size || s->h > o->size) return 0;
@@ -181,12 +191,7 @@ int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int 
     for (int y = o->first_open; y <= ylast; y++) {
         /* Cheap rejection: some footprint row is wider than any free run of its
          * atlas row (widest rows first: they are the likeliest to fail). */
-        int ok = 1;
-        for (int t = 0; t < s->h; t++) {
-            int r = s->row_order[t];
-            if (s->row_width[r] > o->free_run[y + r]) { ok = 0; break; }
-        }
-        if (!ok) continue;
+        if (!rows_may_fit(o, s, y)) continue;
         /* 64 placements at a time, left to right: the first free one is the
          * leftmost. Each span rules out its blocked placements in two reads
          * (run_blocked), where jumping over the taken pixels one by one took a
@@ -198,6 +203,38 @@ int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int 
         }
     }
     return 0;
+}
+
+int occupancy_find_nearest(const occupancy *o, const footprint_spans *s, int x0, int y0, int *ox, int *oy)
+{
+    if (s->w > o->size || s->h > o->size) return 0;
+    int ylast = o->size - s->h, xlast = o->size - s->w;
+    int lead = s->h > 0 ? s->row_order[0] : 0, found = 0, bx = 0, by = 0;
+    long long best = 0;
+    /* Rows by distance from y0 (y0 - d before y0 + d); none farther than the best so far can win. */
+    for (int d = 0;; d++) {
+        long long dy2 = (long long)d * d;
+        if (found && dy2 > best) break;
+        if (y0 - d < 0 && y0 + d > ylast) break;
+        for (int side = 0; side < (d ? 2 : 1); side++) {
+            int y = side ? y0 + d : y0 - d;
+            if (y < 0 || y > ylast || !rows_may_fit(o, s, y)) continue;
+            for (int xb = 0; xb <= xlast; xb += 64) {
+                uint64_t m = xlast - xb >= 63 ? ~(uint64_t)0 : ((uint64_t)1 << (xlast - xb + 1)) - 1;
+                m = placements_free(o, s, y, xb, m, &lead);
+                while (m) {
+                    int x = xb + __builtin_ctzll(m);
+                    m &= m - 1;
+                    long long dist = dy2 + (long long)(x - x0) * (x - x0);
+                    if (!found || dist < best || (dist == best && (y < by || (y == by && x < bx)))) {
+                        found = 1; best = dist; bx = x; by = y;
+                    }
+                }
+            }
+        }
+    }
+    if (found) { *ox = bx; *oy = by; }
+    return found;
 }
 
 void occupancy_mark(occupancy *o, const footprint_spans *s, int x, int y, int pad)

@@ -36,6 +36,10 @@ void occupancy_free(occupancy *o);
 /* Lowest-then-leftmost (y, then x) position where every span of s lands on
  * free pixels, with y + s->h <= y_end. Returns 1 and sets *x, *y when found. */
 int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int *x, int *y);
+/* The position where every span of s lands on free pixels nearest to
+ * (x0, y0) (squared pixel distance; ties: lower y, then lower x). Returns 1
+ * and sets *x, *y when one exists. */
+int occupancy_find_nearest(const occupancy *o, const footprint_spans *s, int x0, int y0, int *x, int *y);
 /* Marks the pixels of s placed with its pixel (0,0) at (x, y), grown by a
  * (2 pad + 1)-pixel square (the padding: every pixel within pad of a covered
  * one, in x and in y); parts outside the atlas are ignored. */

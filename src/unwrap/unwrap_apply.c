@@ -33,6 +33,9 @@
 #define OVERLAP_RESOLUTION 2048
 #define MAX_SHRINK_ROUNDS 25
 #define SHRINK_STEP 0.98
+/* Then, for a chart still overlapping, larger steps down to about a tenth of its size. */
+#define MAX_LATE_SHRINK_ROUNDS 8
+#define LATE_SHRINK_STEP 0.75
 
 /* ---- charts by closest point ------------------------------------------ */
 
@@ -42,9 +45,12 @@
  * mesh: a long triangle cutting a curved region has its centroid nearer
  * the chart next door.
  * Outputs: face_chart (#F, model chart ids), src_face (#F, under the centroid),
+ * centroid_chart (#F: the chart under the centroid when the closest point
+ * facing the same way and the plain closest point agree on it, else -1:
+ * where they differ the surface is thin or two sheets touch),
  * vertex_chart (#V, the model chart under each vertex), *max_dist. */
 static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, int *face_chart, int *src_face,
-                                   int *vertex_chart, double *max_dist)
+                                   int *centroid_chart, int *vertex_chart, double *max_dist)
 {
     bvh b;
     neuv_status s = bvh_build(&b, md->source);
@@ -102,6 +108,12 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
         if (d2[4 * (size_t)f] > worst) worst = d2[4 * (size_t)f];
     }
     *max_dist = sqrt(worst);
+    for (int f = 0; f < m->nf; f++) memmove(pt + 3 * (size_t)f, pt + 3 * (4 * (size_t)f), sizeof(double) * 3);
+    bvh_closest_points(&b, m->nf, pt, sf, NULL, NULL);
+    for (int f = 0; f < m->nf; f++) {
+        int c = md->face_chart[src_face[f]];
+        centroid_chart[f] = md->face_chart[sf[f]] == c ? c : -1;
+    }
 #pragma omp parallel for schedule(dynamic, 256)
     for (int v = 0; v < m->nv; v++) bvh_closest_point_facing(&b, m->pos + 3 * (size_t)v, vn + 3 * (size_t)v, sf + v, NULL, NULL);
     for (int v = 0; v < m->nv; v++) vertex_chart[v] = md->face_chart[sf[v]];
@@ -113,19 +125,28 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
 /* Pieces of a chart cut off from its largest piece (the border zigzag of a
  * coarser or finer triangulation can isolate a few faces) are merged into
  * the neighbouring chart they share the longest border with, smallest
- * first, until every chart is one edge-connected piece (or a piece has no
- * other chart around it). Returns the number merged, or -1 on no memory. */
-static int merge_fragments(const neuv_mesh *m, const face_graph *g, int *face_chart, int n_labels)
+ * first, until every such piece is merged (or has no other chart around
+ * it). A piece whose every face has its centroid over its own chart on
+ * the source, without doubt (centroid_chart), and that borders more than
+ * one other chart or the mesh's border (inside a single chart it would
+ * make a hole in it) is kept as a chart of its own: its chart's map takes
+ * its centroids inside the chart's island, where merged, its texture
+ * would come from the neighbour's map.
+ * Returns the number merged, or -1 on no memory. */
+static int merge_fragments(const face_graph *g, const int *centroid_chart, int *face_chart, int n_labels)
 {
-    int nf = m->nf, merged = 0;
+    int nf = g->nf, merged = 0;
     union_find u;
     int *comp = mem_alloc(sizeof(int) * (size_t)nf);
     double *carea = mem_alloc(sizeof(double) * (size_t)nf);
     int *best = mem_alloc(sizeof(int) * (size_t)n_labels);
     double *share = mem_calloc((size_t)n_labels, sizeof(double));
     int *order = mem_alloc(sizeof(int) * (size_t)nf);
-    if (!comp || !carea || !best || !share || !order || uf_init(&u, nf)) {
-        mem_free(comp); mem_free(carea); mem_free(best); mem_free(share); mem_free(order);
+    unsigned char *inside = mem_alloc((size_t)(nf > 0 ? nf : 1)), *multi = mem_alloc((size_t)(nf > 0 ? nf : 1));
+    int *nb = mem_alloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
+    if (!comp || !carea || !best || !share || !order || !inside || !multi || !nb || uf_init(&u, nf)) {
+        mem_free(comp); mem_free(carea); mem_free(best); mem_free(share); mem_free(order); mem_free(inside);
+        mem_free(multi); mem_free(nb);
         return -1;
     }
     for (int round = 0; round < 8; round++) {
@@ -137,8 +158,21 @@ static int merge_fragments(const neuv_mesh *m, const face_graph *g, int *face_ch
             }
         int nc = uf_labels(&u, comp);
         if (nc < 0) { merged = -1; break; }
-        for (int c = 0; c < nc; c++) carea[c] = 0;
-        for (int f = 0; f < nf; f++) carea[comp[f]] += g->area[f];
+        for (int c = 0; c < nc; c++) { carea[c] = 0; inside[c] = 1; }
+        /* nb: the one other label around each piece so far (-1: none yet), multi: more than one, or a mesh border. */
+        for (int c = 0; c < nc; c++) { nb[c] = -1; multi[c] = 0; }
+        for (int f = 0; f < nf; f++) {
+            int c = comp[f];
+            carea[c] += g->area[f];
+            if (centroid_chart[f] != face_chart[f]) inside[c] = 0;
+            for (int k = 0; k < 3; k++) {
+                int h = g->adj[3 * f + k], l = h >= 0 ? face_chart[h] : -1;
+                if (h >= 0 && l == face_chart[f]) continue;
+                if (h < 0 || (nb[c] >= 0 && nb[c] != l)) multi[c] = 1;
+                else nb[c] = l;
+            }
+        }
+        for (int c = 0; c < nc; c++) inside[c] = inside[c] && multi[c];
         for (int l = 0; l < n_labels; l++) best[l] = -1;
         for (int c = 0; c < nc; c++) order[c] = -1;
         for (int f = 0; f < nf; f++) { /* largest piece of each label */
@@ -150,7 +184,7 @@ static int merge_fragments(const neuv_mesh *m, const face_graph *g, int *face_ch
         int n_frag = 0;
         for (int f = 0; f < nf; f++) {
             int c = comp[f];
-            if (c != best[face_chart[f]] && order[c] < 0) order[c] = n_frag++;
+            if (c != best[face_chart[f]] && !inside[c] && order[c] < 0) order[c] = n_frag++;
         }
         if (n_frag == 0) break;
         int changed = 0;
@@ -180,8 +214,30 @@ static int merge_fragments(const neuv_mesh *m, const face_graph *g, int *face_ch
         if (!changed) break;
     }
     uf_free(&u);
-    mem_free(comp); mem_free(carea); mem_free(best); mem_free(share); mem_free(order);
+    mem_free(comp); mem_free(carea); mem_free(best); mem_free(share); mem_free(order); mem_free(inside);
+    mem_free(multi); mem_free(nb);
     return merged;
+}
+
+
+/* Edge-connected pieces of equal label: piece (#F) gets a dense id per
+ * piece, numbered in order of each piece's first face. The border zigzag
+ * of a coarser or finer triangulation can cut a few faces of a chart off
+ * from the rest; they keep their chart's map as a chart of their own
+ * (merged into a neighbour, their texture would come from the neighbour's
+ * map). Returns the number of pieces, or -1 on no memory. */
+static int label_pieces(const face_graph *g, const int *label, int *piece)
+{
+    union_find u;
+    if (uf_init(&u, g->nf)) return -1;
+    for (int f = 0; f < g->nf; f++)
+        for (int k = 0; k < 3; k++) {
+            int h = g->adj[3 * f + k];
+            if (h >= 0 && label[h] == label[f]) uf_union(&u, f, h);
+        }
+    int n = uf_labels(&u, piece);
+    uf_free(&u);
+    return n;
 }
 
 /* ---- per-chart UVs ------------------------------------------------------ */
@@ -656,7 +712,9 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
  * overlapping pair, the chart already off the model's layout (re-flattened
  * by a fold repair, or moved), else the smaller one, shrinks to SHRINK_STEP
  * of its size about its centroid, once per round: small steps, so that a
- * chart moves no farther than the overlap needs. */
+ * chart moves no farther than the overlap needs; then larger ones
+ * (LATE_SHRINK_STEP), since a chart shrunk in place keeps its texture's
+ * place where a chart moved elsewhere does not. */
 static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *span)
 {
     neuv_mesh *m = r->mesh;
@@ -664,7 +722,11 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
     unsigned char *now = mem_alloc((size_t)r->n_charts + 1);
     if (!shrunk || !now) { mem_free(shrunk); mem_free(now); return error_nomem("overlap test"); }
     neuv_status s = NEUV_OK;
-    for (int round = 0; round < MAX_SHRINK_ROUNDS; round++) {
+    double *scale = mem_alloc(sizeof(double) * ((size_t)r->n_charts + 1));
+    if (!scale) { mem_free(shrunk); mem_free(now); return error_nomem("overlap test"); }
+    for (int c = 0; c < r->n_charts; c++) scale[c] = 1;
+    for (int round = 0; round < MAX_SHRINK_ROUNDS + MAX_LATE_SHRINK_ROUNDS; round++) {
+        double step = round < MAX_SHRINK_ROUNDS ? SHRINK_STEP : LATE_SHRINK_STEP;
         int *pairs = NULL, np = 0;
         if ((s = overlapping_pairs(r, &pairs, &np))) break;
         if (np == 0) { mem_free(pairs); break; }
@@ -683,9 +745,10 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
             cx /= P->count;
             cy /= P->count;
             for (int i = P->first; i < P->first + P->count; i++) {
-                m->uv[2 * i] = cx + SHRINK_STEP * (m->uv[2 * i] - cx);
-                m->uv[2 * i + 1] = cy + SHRINK_STEP * (m->uv[2 * i + 1] - cy);
+                m->uv[2 * i] = cx + step * (m->uv[2 * i] - cx);
+                m->uv[2 * i + 1] = cy + step * (m->uv[2 * i + 1] - cy);
             }
+            scale[pick] *= step;
             if (!shrunk[pick]) r->model.shrunk_charts++;
             shrunk[pick]++;
             P->moved = 1;
@@ -696,8 +759,8 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
     for (int c = 0; c < r->n_charts && s == NEUV_OK; c++)
         if (shrunk[c])
             unwrap_add_repair(r, c, "overlapped a neighbour in the atlas; shrunk to %.3f of its size about its centroid",
-                              pow(SHRINK_STEP, shrunk[c]));
-    mem_free(shrunk); mem_free(now);
+                              scale[c]);
+    mem_free(shrunk); mem_free(now); mem_free(scale);
     return s;
 }
 
@@ -720,8 +783,9 @@ static int chart_footprint(const neuv_mesh *m, const chart_span *sp, const int *
 
 /* Last resort for the no-overlap guarantee, after the shrinking: the
  * smaller chart of each pair that still overlaps moves, at its size, to the
- * lowest-then-leftmost free place of the atlas (the packing's pixel grid and
- * padding) with every other chart kept where it is. The rest of the layout
+ * free place of the atlas nearest to where it was (the packing's pixel grid
+ * and padding) with every other chart kept where it is: the nearer, the
+ * less of a painted texture it leaves behind. The rest of the layout
  * stays the source's; each move is reported. */
 static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span *span)
 {
@@ -762,7 +826,7 @@ static neuv_status place_in_free_space(struct neuv_unwrap_result *r, chart_span 
             for (int tries = 0; pass == 1 && tries < 8; tries++) {
                 footprint_spans_free(&fs);
                 if (footprint_to_spans(&fp, &fs)) { s = error_nomem("chart placement"); break; }
-                found = occupancy_find(&occ, &fs, R, &x, &y);
+                found = occupancy_find_nearest(&occ, &fs, x0, y0, &x, &y);
                 if (found) break;
                 /* No room at this size: 0.8 of it about its centroid, and look again. */
                 double cx = 0, cy = 0;
@@ -902,37 +966,60 @@ neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model
         mem_free(label); mem_free(src_face);
         return error_nomem("charts");
     }
+    /* The chart under each face's centroid: a cut-off piece is kept where it agrees. */
+    int *centroid_chart = mem_alloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
     double dist = 0;
-    s = transfer_charts(m, md, label, src_face, vertex_chart, &dist);
+    s = centroid_chart ? transfer_charts(m, md, label, src_face, centroid_chart, vertex_chart, &dist)
+                       : error_nomem("charts");
     r->model.surface_distance = md->norm[3] > 0 ? dist / md->norm[3] : 0;
     face_graph g;
     if (s == NEUV_OK) s = face_graph_build(m, &g);
+    int *piece = NULL;
+    int n_pieces = 0;
     if (s == NEUV_OK) {
-        int merged = merge_fragments(m, &g, label, md->n_charts);
+        int merged = merge_fragments(&g, centroid_chart, label, md->n_charts);
         if (merged < 0) s = error_nomem("charts");
         int settled = s == NEUV_OK && !o->refine_on_mesh ? settle_border_faces(m, md, &g, label, &s) : 0;
         if (s == NEUV_OK && settled > 0) {
-            int again = merge_fragments(m, &g, label, md->n_charts);
+            int again = merge_fragments(&g, centroid_chart, label, md->n_charts);
             if (again < 0) s = error_nomem("charts");
             else merged += again;
         }
+        r->model.merged_fragments = merged > 0 ? merged : 0;
+        r->model.settled_faces = settled > 0 ? settled : 0;
+        piece = mem_alloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
+        if (s == NEUV_OK && !piece) s = error_nomem("charts");
+        if (s == NEUV_OK && (n_pieces = label_pieces(&g, label, piece)) < 0) s = error_nomem("charts");
         face_graph_free(&g);
-        r->model.merged_fragments = merged;
-        r->model.settled_faces = settled;
     }
-    /* Compact ids: source charts that got no face are dropped. */
-    int *model_chart = r->model.source_chart = mem_alloc(sizeof(int) * (size_t)md->n_charts);
-    int *new_id = mem_alloc(sizeof(int) * (size_t)md->n_charts);
-    if (s == NEUV_OK && (!model_chart || !new_id)) s = error_nomem("charts");
+    /* One chart per connected piece of a source chart's faces, in the
+     * source's chart order (pieces of one chart in order of their first
+     * face); source charts that got no face are dropped. */
+    int *model_chart = r->model.source_chart = mem_alloc(sizeof(int) * (size_t)(n_pieces > 0 ? n_pieces : 1));
+    int *new_id = mem_alloc(sizeof(int) * (size_t)(n_pieces > 0 ? n_pieces : 1));
+    int *first = mem_calloc((size_t)md->n_charts + 1, sizeof(int));
+    if (s == NEUV_OK && (!model_chart || !new_id || !first)) s = error_nomem("charts");
     if (s == NEUV_OK) {
-        for (int c = 0; c < md->n_charts; c++) new_id[c] = -1;
-        for (int f = 0; f < m->nf; f++) new_id[label[f]] = 0;
-        r->n_charts = 0;
-        for (int c = 0; c < md->n_charts; c++)
-            if (new_id[c] == 0) { model_chart[r->n_charts] = c; new_id[c] = r->n_charts++; }
-        r->model.empty_charts = md->n_charts - r->n_charts;
-        for (int f = 0; f < m->nf; f++) r->face_chart[f] = new_id[label[f]];
+        /* piece_label[p] through new_id: the label of each piece, counted per label. */
+        for (int p = 0; p < n_pieces; p++) new_id[p] = -1;
+        for (int f = 0; f < m->nf; f++)
+            if (new_id[piece[f]] < 0) { new_id[piece[f]] = label[f]; first[label[f] + 1]++; }
+        int used = 0;
+        for (int c = 0; c < md->n_charts; c++) used += first[c + 1] > 0;
+        for (int c = 0; c < md->n_charts; c++) first[c + 1] += first[c];
+        for (int p = 0; p < n_pieces; p++) { /* pieces are numbered by first face: stable per label */
+            int l = new_id[p];
+            model_chart[first[l]] = l;
+            new_id[p] = first[l]++;
+        }
+        r->n_charts = n_pieces;
+        r->model.empty_charts = md->n_charts - used;
+        r->model.fragment_charts = n_pieces - used;
+        for (int f = 0; f < m->nf; f++) r->face_chart[f] = new_id[piece[f]];
     }
+    mem_free(piece);
+    mem_free(first);
+    mem_free(centroid_chart);
     mem_free(label);
     mem_free(new_id);
     unwrap_stage_time(r, STAGE_PATCHES, t);

@@ -108,6 +108,7 @@ struct neuv_unwrap_result {
         int transferred_charts;   /* charts whose UVs came from the source surface by closest point */
         int empty_charts;         /* source charts that got no face on this mesh */
         int merged_fragments;     /* pieces of a transferred chart merged into a neighbour */
+        int fragment_charts;      /* charts that are a second or further piece of a source chart */
         int settled_faces;        /* border faces given to the neighbour whose source map takes them unflipped */
         int shrunk_charts;        /* charts shrunk about their centroid to end an overlap */
         int moved_charts;         /* charts not where the source atlas put them (shrunk or moved) */

@@ -165,6 +165,7 @@ static void write_surface_model(json_writer *w, const struct neuv_unwrap_result 
     json_key(w, "transferred_charts"); json_int(w, r->model.transferred_charts);
     json_key(w, "empty_source_charts"); json_int(w, r->model.empty_charts);
     json_key(w, "merged_fragments"); json_int(w, r->model.merged_fragments);
+    json_key(w, "fragment_charts"); json_int(w, r->model.fragment_charts);
     json_key(w, "settled_faces"); json_int(w, r->model.settled_faces);
     json_key(w, "map_from");
     json_string(w, r->model.refinement_carried
