@@ -33,9 +33,14 @@
 #define OVERLAP_RESOLUTION 2048
 #define MAX_SHRINK_ROUNDS 25
 #define SHRINK_STEP 0.98
-/* Then, for a chart still overlapping, larger steps down to about a tenth of its size. */
+/* Then, for a chart still overlapping, larger steps down to 0.06 of its
+ * size, as long as no corner ends farther than LATE_SHRINK_MAX_SHIFT (of
+ * the atlas side, the p95 bound of issue 15) from where the source put it:
+ * beyond that a chart shrunk in place is no nearer its texture than one
+ * moved to the nearest free place. */
 #define MAX_LATE_SHRINK_ROUNDS 8
 #define LATE_SHRINK_STEP 0.75
+#define LATE_SHRINK_MAX_SHIFT 0.01
 
 /* ---- charts by closest point ------------------------------------------ */
 
@@ -744,6 +749,12 @@ static neuv_status resolve_overlaps(struct neuv_unwrap_result *r, chart_span *sp
             for (int i = P->first; i < P->first + P->count; i++) { cx += m->uv[2 * i]; cy += m->uv[2 * i + 1]; }
             cx /= P->count;
             cy /= P->count;
+            if (round >= MAX_SHRINK_ROUNDS) {
+                double r2 = 0; /* the farthest corner from the centroid, at the chart's size now */
+                for (int i = P->first; i < P->first + P->count; i++)
+                    r2 = fmax(r2, (m->uv[2 * i] - cx) * (m->uv[2 * i] - cx) + (m->uv[2 * i + 1] - cy) * (m->uv[2 * i + 1] - cy));
+                if ((1 - scale[pick] * step) * sqrt(r2) / scale[pick] > LATE_SHRINK_MAX_SHIFT) continue;
+            }
             for (int i = P->first; i < P->first + P->count; i++) {
                 m->uv[2 * i] = cx + step * (m->uv[2 * i] - cx);
                 m->uv[2 * i + 1] = cy + step * (m->uv[2 * i + 1] - cy);
