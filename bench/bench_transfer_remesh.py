@@ -12,7 +12,9 @@ surface, flat edges flipped). On each target:
              by LSCM on the target and placed onto the model's map by a
              similarity (what a classic tool could do with the charts)
 and `neuv compare SOURCE TARGET` for UV distance (in the matched chart, and
-at the nearest point whatever its chart), chart agreement, flips, overlap.
+at the nearest point whatever its chart), chart agreement (plain closest
+point; "agree_f" with each face located on the source faces facing its
+way), flips, overlap.
 Beside them: two independent unwraps of the source (seeds 1 and 2), what a
 user gets without a model.
 
@@ -68,8 +70,8 @@ def main():
     neuv = os.path.join(args.build, "neuv")
     os.makedirs(args.out, exist_ok=True)
     th = ["--threads", str(args.threads), "--quiet"]
-    head = "%-10s %-8s %6s %-6s %9s %9s %9s %7s %6s %5s %8s %5s %7s %7s %7s" % (
-        "mesh", "target", "faces", "map", "uv_mean", "uv_p95", "nearest", "agree", "past", "flips", "overlap",
+    head = "%-10s %-8s %6s %-6s %9s %9s %9s %7s %7s %6s %5s %8s %5s %7s %7s %7s" % (
+        "mesh", "target", "faces", "map", "uv_mean", "uv_p95", "nearest", "agree", "agree_f", "past", "flips", "overlap",
         "moved", "net", "qce", "apply_s")
     print(head)
     rows = []
@@ -100,21 +102,23 @@ def main():
                 net = sum(v["charts"] for k2, v in srcs.items() if k2.startswith("network"))
                 row = dict(mesh=name, target=label, faces=rep["faces"], map=kind, uv_mean=c["uv_distance"]["mean"],
                            uv_p95=c["uv_distance"]["p95"], nearest=c["uv_distance_nearest"]["mean"],
-                           agree=c["chart_agreement"], past=c["across_seam"], flips=c["b_flipped"],
+                           agree=c["chart_agreement"], agree_f=c["chart_agreement_facing"],
+                           past=c["across_seam"], flips=c["b_flipped"],
                            overlap=c["b_overlap_fraction"], moved=rep["model"]["moved_charts"],
                            net="%d/%d" % (net, rep["charts"]), qce=c["b_qce_mean"],
                            apply_s=statistics.median(times))
                 rows.append(row)
-                print("%-10s %-8s %6d %-6s %9.2e %9.2e %9.2e %7.4f %6.3f %5d %8.2g %5d %7s %7.4f %7.2f" % tuple(
-                    row[k2] for k2 in ("mesh", "target", "faces", "map", "uv_mean", "uv_p95", "nearest", "agree",
+                print("%-10s %-8s %6d %-6s %9.2e %9.2e %9.2e %7.4f %7.4f %6.3f %5d %8.2g %5d %7s %7.4f %7.2f" % tuple(
+                    row[k2] for k2 in ("mesh", "target", "faces", "map", "uv_mean", "uv_p95", "nearest", "agree", "agree_f",
                                        "past", "flips", "overlap", "moved", "net", "qce", "apply_s")), flush=True)
         c = compare(neuv, atlas, o + "-seed2.obj")
         row = dict(mesh=name, target="source", faces=c["faces_b"], map="indep", uv_mean=c["uv_distance"]["mean"],
                    uv_p95=c["uv_distance"]["p95"], nearest=c["uv_distance_nearest"]["mean"], agree=c["chart_agreement"],
-                   past=c["across_seam"], flips=c["b_flipped"], overlap=c["b_overlap_fraction"], qce=c["b_qce_mean"])
+                   agree_f=c["chart_agreement_facing"], past=c["across_seam"], flips=c["b_flipped"],
+                   overlap=c["b_overlap_fraction"], qce=c["b_qce_mean"])
         rows.append(row)
-        print("%-10s %-8s %6d %-6s %9.2e %9.2e %9.2e %7.4f %6.3f %5d %8.2g %5s %7s %7.4f %7s" % (
-            name, "seed 2", row["faces"], "indep", row["uv_mean"], row["uv_p95"], row["nearest"], row["agree"],
+        print("%-10s %-8s %6d %-6s %9.2e %9.2e %9.2e %7.4f %7.4f %6.3f %5d %8.2g %5s %7s %7.4f %7s" % (
+            name, "seed 2", row["faces"], "indep", row["uv_mean"], row["uv_p95"], row["nearest"], row["agree"], row["agree_f"],
             row["past"], row["flips"], row["overlap"], "-", "-", row["qce"], "-"), flush=True)
     json.dump(rows, open(os.path.join(args.out, "rows.json"), "w"), indent=1)
 

@@ -41,6 +41,38 @@ static neuv_mesh *two_chart_grid(int n, double cut, double dx)
     return g;
 }
 
+/* Two sheets over [0,1]² 0.01 apart facing each other (the lower one up,
+ * the upper one down), each its own UV island: the two sides of a thin part. */
+static neuv_mesh *two_sheets(int n)
+{
+    neuv_mesh *g = shape_grid(n, n, 1, 1, 0);
+    double nrm[3];
+    mesh_face_normal(g, 0, nrm);
+    neuv_mesh *m = mesh_create(2 * g->nv, 2 * g->nf, 0);
+    double *uv = malloc(sizeof(double) * 4 * g->nv);
+    int *tuv = malloc(sizeof(int) * 6 * g->nf);
+    for (int v = 0; v < g->nv; v++)
+        for (int s = 0; s < 2; s++) {
+            double *p = m->pos + 3 * ((size_t)s * g->nv + v);
+            p[0] = g->pos[3 * v]; p[1] = g->pos[3 * v + 1]; p[2] = s ? 0.01 : 0;
+            uv[2 * (s * g->nv + v)] = p[0] + 2 * s;
+            uv[2 * (s * g->nv + v) + 1] = p[1];
+        }
+    for (int f = 0; f < g->nf; f++)
+        for (int s = 0; s < 2; s++) {
+            int up = (nrm[2] > 0) != (s == 1); /* keep the corner order where this sheet faces its way */
+            for (int k = 0; k < 3; k++) {
+                int c = 3 * (s * g->nf + f) + k;
+                m->tri[c] = s * g->nv + g->tri[3 * f + (up ? k : 2 - k)];
+                tuv[c] = m->tri[c];
+            }
+        }
+    mesh_set_uv(m, 2 * g->nv, uv, tuv);
+    free(uv); free(tuv);
+    mesh_free(g);
+    return m;
+}
+
 int main(void)
 {
     uv_compare_result r;
@@ -151,6 +183,28 @@ int main(void)
         CHECK(cmp.uv_max == 0);
         CHECK_INT(split->nv, 3 * a->nf); /* the caller's mesh is not welded */
         mesh_free(split);
+    }
+
+    /* A sheet facing up, tilted from 0.001 to 0.009 above the lower of two
+     * facing sheets 0.01 apart, with the lower sheet's map: past x = 0.5 its
+     * plain closest point is on the upper sheet (the other island), while
+     * on the faces facing its way every face finds the lower one. */
+    {
+        neuv_mesh *ts = two_sheets(12), *tilt = shape_grid(12, 12, 1, 1, 1);
+        double nrm[3];
+        mesh_face_normal(tilt, 0, nrm);
+        if (nrm[2] < 0)
+            for (int f = 0; f < tilt->nf; f++) {
+                int t = tilt->tri[3 * f + 1]; tilt->tri[3 * f + 1] = tilt->tri[3 * f + 2]; tilt->tri[3 * f + 2] = t;
+                t = tilt->tri_uv[3 * f + 1]; tilt->tri_uv[3 * f + 1] = tilt->tri_uv[3 * f + 2]; tilt->tri_uv[3 * f + 2] = t;
+            }
+        for (int v = 0; v < tilt->nv; v++) tilt->pos[3 * v + 2] = 0.001 + 0.008 * tilt->pos[3 * v];
+        CHECK_INT(uv_compare(ts, tilt, &r), NEUV_OK);
+        CHECK_INT(r.charts_a, 2);
+        CHECK_INT(r.charts_b, 1);
+        CHECK_NEAR(r.chart_agreement_facing, 1, 0);
+        CHECK_NEAR(r.chart_agreement, 0.5, 0.05);
+        mesh_free(ts); mesh_free(tilt);
     }
 
     /* Bad inputs. */

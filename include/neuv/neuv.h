@@ -886,6 +886,8 @@ typedef struct neuv_uv_comparison {
     double across_seam;        /* share of B's corners past their matched chart's seam */
     double chart_agreement;    /* share of B's area whose chart agrees with A's */
     double chart_agreement_faces; /* the same share counted in faces */
+    double chart_agreement_facing; /* the area share with each B face located on the A faces facing its way
+                                      (where two sheets touch, the plain closest point can be on the other) */
     int faces_a, faces_b, charts_a, charts_b;
     int vertices_compared;     /* distinct (vertex, UV) corners of B */
     double max_surface_distance; /* largest distance of a compared B vertex to A's surface */

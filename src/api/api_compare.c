@@ -43,6 +43,7 @@ neuv_status neuv_compare_uvs(const neuv_mesh *a, const neuv_mesh *b, const neuv_
     out->across_seam = r.across_seam;
     out->chart_agreement = r.chart_agreement;
     out->chart_agreement_faces = r.chart_agreement_faces;
+    out->chart_agreement_facing = r.chart_agreement_facing;
     out->faces_a = r.faces_a;
     out->faces_b = r.faces_b;
     out->charts_a = r.charts_a;
@@ -83,6 +84,7 @@ char *neuv_uv_comparison_json(const neuv_uv_comparison *c, const char *a_name, c
     json_key(&w, "across_seam"); json_number(&w, c->across_seam);
     json_key(&w, "chart_agreement"); json_number(&w, c->chart_agreement);
     json_key(&w, "chart_agreement_faces"); json_number(&w, c->chart_agreement_faces);
+    json_key(&w, "chart_agreement_facing"); json_number(&w, c->chart_agreement_facing);
     json_key(&w, "charts_a"); json_int(&w, c->charts_a);
     json_key(&w, "charts_b"); json_int(&w, c->charts_b);
     json_key(&w, "faces_a"); json_int(&w, c->faces_a);

@@ -41,8 +41,9 @@ int cmd_compare(int argc, char **argv)
            r.vertices_compared, r.uv_mean, r.uv_p95, r.uv_max, 100 * r.across_seam);
     printf("  UV distance at the closest point whatever its chart: mean %.6g  p95 %.6g  max %.6g\n", r.nearest_mean,
            r.nearest_p95, r.nearest_max);
-    printf("  chart agreement: %.2f%% of B's area (%.2f%% of its faces)\n", 100 * r.chart_agreement,
-           100 * r.chart_agreement_faces);
+    printf("  chart agreement: %.2f%% of B's area (%.2f%% of its faces; %.2f%% of its area with each face located on "
+           "A's faces facing its way)\n", 100 * r.chart_agreement, 100 * r.chart_agreement_faces,
+           100 * r.chart_agreement_facing);
     printf("  faces: A %d, B %d; charts: A %d, B %d; B's farthest vertex from A's surface %.3g\n", r.faces_a, r.faces_b,
            r.charts_a, r.charts_b, r.max_surface_distance);
     printf("  B: %d flipped faces, overlap %.3g, qce_mean %.4f\n", r.b_metrics.flipped, r.b_metrics.overlap_fraction,

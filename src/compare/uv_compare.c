@@ -123,6 +123,50 @@ static void summarize(double *dist, int n, double *mean, double *p95, double *ma
     *p95 = lo + 1 < n ? dist[lo] + (rank - lo) * (dist[lo + 1] - dist[lo]) : dist[lo];
 }
 
+/* Chart agreement of B with A given the A chart under each B face
+ * (label): each B chart is matched to the A chart holding most of its area
+ * (ties: the smaller A chart id), best_a (#B charts) gets the match, and
+ * *area / *faces the share of B's area / faces whose label is their
+ * chart's match. Returns 0, or -1 on no memory. */
+static int chart_agreement(const neuv_mesh *b, const int *chart_b, int ncbch, const int *label, int *best_a,
+                           double *area_share, double *face_share)
+{
+    edge_map pairs;
+    double *pair_area = mem_alloc(sizeof(double) * (size_t)(b->nf > 0 ? b->nf : 1));
+    double *best_area = mem_alloc(sizeof(double) * (size_t)(ncbch > 0 ? ncbch : 1));
+    int ok = pair_area && best_area && edge_map_init(&pairs, (size_t)b->nf / 4 + 16) == 0;
+    if (!ok) { mem_free(pair_area); mem_free(best_area); return -1; }
+    /* Area of B chart cb under A chart ca, one slot per pair met. */
+    int npairs = 0;
+    double total = 0;
+    for (int f = 0; f < b->nf && ok; f++) {
+        int inserted;
+        int *slot = edge_map_slot(&pairs, chart_b[f], label[f], npairs, &inserted);
+        if (!slot) { ok = 0; break; }
+        if (inserted) pair_area[npairs++] = 0;
+        double ar = mesh_face_area(b, f);
+        pair_area[*slot] += ar;
+        total += ar;
+    }
+    if (ok) {
+        for (int c = 0; c < ncbch; c++) { best_a[c] = -1; best_area[c] = -1; }
+        for (int f = 0; f < b->nf; f++) {
+            int cb = chart_b[f], ca = label[f];
+            double ar = pair_area[edge_map_get(&pairs, cb, ca)];
+            if (ar > best_area[cb] || (ar == best_area[cb] && ca < best_a[cb])) { best_area[cb] = ar; best_a[cb] = ca; }
+        }
+        double agree_area = 0;
+        int agree_faces = 0;
+        for (int f = 0; f < b->nf; f++)
+            if (label[f] == best_a[chart_b[f]]) { agree_area += mesh_face_area(b, f); agree_faces++; }
+        *area_share = total > 0 ? agree_area / total : (double)agree_faces / b->nf;
+        *face_share = (double)agree_faces / b->nf;
+    }
+    edge_map_free(&pairs);
+    mem_free(pair_area); mem_free(best_area);
+    return ok ? 0 : -1;
+}
+
 neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result *res)
 {
     memset(res, 0, sizeof *res);
@@ -133,18 +177,16 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     neuv_status st = NEUV_OK;
     bvh tree;
     memset(&tree, 0, sizeof tree);
-    edge_map wedges, pairs;
+    edge_map wedges;
     int wedges_ok = edge_map_init(&wedges, ncb) == 0;
-    int pairs_ok = edge_map_init(&pairs, (size_t)b->nf / 4 + 16) == 0;
     int *wv = mem_alloc(sizeof(int) * ncb), *wu = mem_alloc(sizeof(int) * ncb), *wchart = mem_alloc(sizeof(int) * ncb);
     int *vf_start = mem_calloc((size_t)a->nv + 1, sizeof(int)), *vf = mem_alloc(sizeof(int) * 3 * (size_t)a->nf);
     int *chart_a = mem_alloc(sizeof(int) * (size_t)a->nf), *chart_b = mem_alloc(sizeof(int) * (size_t)b->nf);
     double *pts = mem_alloc(sizeof(double) * 3 * (ncb > (size_t)b->nf ? ncb : (size_t)b->nf));
     double *bary = mem_alloc(sizeof(double) * 3 * ncb), *d2 = mem_alloc(sizeof(double) * ncb), *dist = NULL, *dist_any = NULL;
     int *face = mem_alloc(sizeof(int) * ncb);
-    double *pair_area = NULL, *best_area = NULL;
     int *best_a = NULL;
-    if (!wedges_ok || !pairs_ok || !wv || !wu || !wchart || !vf_start || !vf || !chart_a || !chart_b || !pts || !bary ||
+    if (!wedges_ok || !wv || !wu || !wchart || !vf_start || !vf || !chart_a || !chart_b || !pts || !bary ||
         !d2 || !face)
         goto nomem;
     if ((st = bvh_build(&tree, a))) goto done;
@@ -164,35 +206,26 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
             pts[3 * (size_t)f + i] = (b->pos[3 * (size_t)t[0] + i] + b->pos[3 * (size_t)t[1] + i] + b->pos[3 * (size_t)t[2] + i]) / 3;
     }
     bvh_closest_points(&tree, b->nf, pts, face, NULL, NULL);
-    /* Area of B chart cb under A chart ca, one slot per pair met. */
-    pair_area = mem_alloc(sizeof(double) * (size_t)b->nf);
-    best_area = mem_calloc((size_t)ncbch, sizeof(double));
     best_a = mem_alloc(sizeof(int) * (size_t)ncbch);
-    if (!pair_area || !best_area || !best_a) goto nomem;
-    int npairs = 0;
-    double total = 0;
+    int *label = mem_alloc(sizeof(int) * (size_t)b->nf), *best_facing = mem_alloc(sizeof(int) * (size_t)ncbch);
+    if (!best_a || !label || !best_facing) { mem_free(label); mem_free(best_facing); goto nomem; }
+    for (int f = 0; f < b->nf; f++) label[f] = chart_a[face[f]];
+    int ag = chart_agreement(b, chart_b, ncbch, label, best_a, &res->chart_agreement, &res->chart_agreement_faces);
+    /* Again with the closest point facing the same way as the B face. */
+#pragma omp parallel for schedule(dynamic, 256)
     for (int f = 0; f < b->nf; f++) {
-        int inserted;
-        int *slot = edge_map_slot(&pairs, chart_b[f], chart_a[face[f]], npairs, &inserted);
-        if (!slot) goto nomem;
-        if (inserted) pair_area[npairs++] = 0;
-        double ar = mesh_face_area(b, f);
-        pair_area[*slot] += ar;
-        total += ar;
+        const int *t = b->tri + 3 * (size_t)f;
+        const double *p0 = b->pos + 3 * (size_t)t[0], *p1 = b->pos + 3 * (size_t)t[1], *p2 = b->pos + 3 * (size_t)t[2];
+        double e0[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e1[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
+        int af;
+        bvh_closest_point_facing(&tree, pts + 3 * (size_t)f, n, &af, NULL, NULL);
+        label[f] = chart_a[af];
     }
-    for (int c = 0; c < ncbch; c++) { best_a[c] = -1; best_area[c] = -1; }
-    /* Ties go to the smaller A chart id: a fixed rule, whatever the hash order. */
-    for (int f = 0; f < b->nf; f++) {
-        int cb = chart_b[f], ca = chart_a[face[f]];
-        double ar = pair_area[edge_map_get(&pairs, cb, ca)];
-        if (ar > best_area[cb] || (ar == best_area[cb] && ca < best_a[cb])) { best_area[cb] = ar; best_a[cb] = ca; }
-    }
-    double agree_area = 0;
-    int agree_faces = 0;
-    for (int f = 0; f < b->nf; f++)
-        if (chart_a[face[f]] == best_a[chart_b[f]]) { agree_area += mesh_face_area(b, f); agree_faces++; }
-    res->chart_agreement = total > 0 ? agree_area / total : (double)agree_faces / b->nf;
-    res->chart_agreement_faces = (double)agree_faces / b->nf;
+    double facing_faces;
+    if (ag == 0) ag = chart_agreement(b, chart_b, ncbch, label, best_facing, &res->chart_agreement_facing, &facing_faces);
+    mem_free(label); mem_free(best_facing);
+    if (ag != 0) goto nomem;
     res->faces_a = a->nf;
     res->faces_b = b->nf;
 
@@ -260,9 +293,8 @@ nomem:
     st = error_set(NEUV_ERR_NOMEM, "out of memory comparing UV maps");
 done:
     if (wedges_ok) edge_map_free(&wedges);
-    if (pairs_ok) edge_map_free(&pairs);
     mem_free(wv); mem_free(wu); mem_free(wchart); mem_free(vf_start); mem_free(vf); mem_free(chart_a); mem_free(chart_b); mem_free(pts);
-    mem_free(bary); mem_free(d2); mem_free(dist); mem_free(dist_any); mem_free(face); mem_free(pair_area); mem_free(best_area); mem_free(best_a);
+    mem_free(bary); mem_free(d2); mem_free(dist); mem_free(dist_any); mem_free(face); mem_free(best_a);
     bvh_free(&tree);
     return st;
 }

@@ -14,6 +14,11 @@ typedef struct uv_compare_result {
     double across_seam;             /* share of B's corners lying past their matched A chart's seam */
     double chart_agreement;         /* headline: share of B's surface AREA whose chart agrees */
     double chart_agreement_faces;   /* the same share counted in faces */
+    double chart_agreement_facing;  /* the area share with the closest point among A's faces facing the
+                                       B face's way (bvh_closest_point_facing), as `neuv unwrap --model`
+                                       finds each face's chart: where two sheets are closer than the
+                                       triangulations differ (a lid resting on its pot, the two sides of a
+                                       thin part) the plain closest point can lie on the other sheet */
     int faces_a, faces_b;
     int charts_a, charts_b;
     int vertices_compared;          /* distinct (vertex, UV) corners of B */
