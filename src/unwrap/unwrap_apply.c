@@ -525,15 +525,15 @@ static int relax_folds(chart_piece *p, double *scratch)
  * model put it; a smaller weight unfolds harder folds. */
 static const double reflatten_anchor_lambda[] = {10.0, 1.0, 0.1};
 
-/* Flattens a piece again: LSCM anchored to target, then plain LSCM and
- * harmonic aligned to target by a similarity. Returns 1 when the result is
+/* Flattens a piece again: LSCM anchored to target, then (aligned) plain
+ * LSCM and harmonic aligned to target by a similarity. Returns 1 when the result is
  * usable, 0 when not, -1 on no memory; a flattening error (not a disk)
  * counts as unusable. */
-static int reflatten(chart_piece *p, const double *target, double *scratch, const char **how)
+static int reflatten(chart_piece *p, const double *target, double *scratch, int aligned, const char **how)
 {
     chart_uv_check chk;
     const int anchored = (int)(sizeof reflatten_anchor_lambda / sizeof reflatten_anchor_lambda[0]);
-    for (int attempt = 0; attempt < anchored + 2; attempt++) {
+    for (int attempt = 0; attempt < anchored + (aligned ? 2 : 0); attempt++) {
         neuv_status s;
         if (attempt < anchored) {
             s = lscm_anchored(p->sub, target, reflatten_anchor_lambda[attempt], p->uv);
@@ -1397,7 +1397,25 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             } else if (ok > 0) {
                 unwrap_add_repair(r, c, "%s map folded on this mesh (%s); folded faces relaxed locally",
                                   net >= 0 && !deviates ? "network" : "transferred", why);
-            } else if (ok == 0 && (ok = reflatten(p, target, scratch, &how)) > 0) {
+            } else if (ok == 0 && (ok = reflatten(p, target, scratch, 0, &how)) > 0) {
+                repaired[c] = 1;
+                unwrap_add_repair(r, c, "%s map folded on this mesh (%s); re-flattened with %s",
+                                  net >= 0 && !deviates ? "network" : "transferred", why, how);
+            } else if (ok == 0 && !o->refine_on_mesh && can_split_again(depth, c, p, splits, m)) {
+                /* Before a flattening that only a similarity places (its
+                 * shape is not the island's, so it overlaps the neighbours
+                 * and moves): the chart split, each piece mapped again as a
+                 * chart of its own, where most keep the map in place. */
+                int before = r->n_charts;
+                s = split_network_chart(r, c, cap, &model_chart, &depth);
+                splits++;
+                unwrap_add_repair(r, c, "%s map folded here (%s), anchored LSCM too; split in %d charts mapped "
+                                  "again", net >= 0 && !deviates ? "network" : "transferred", why,
+                                  r->n_charts - before + 1);
+                mem_free(target); mem_free(scratch); mem_free(ext);
+                c--;
+                continue;
+            } else if (ok == 0 && (ok = reflatten(p, target, scratch, 1, &how)) > 0) {
                 repaired[c] = 1;
                 unwrap_add_repair(r, c, "%s map folded on this mesh (%s); re-flattened with %s",
                                   net >= 0 && !deviates ? "network" : "transferred", why, how);
