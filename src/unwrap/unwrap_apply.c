@@ -131,27 +131,29 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
  * coarser or finer triangulation can isolate a few faces) are merged into
  * the neighbouring chart they share the longest border with, smallest
  * first, until every such piece is merged (or has no other chart around
- * it). A piece whose every face has its centroid over its own chart on
- * the source, without doubt (centroid_chart), and that borders more than
- * one other chart or the mesh's border (inside a single chart it would
- * make a hole in it) is kept as a chart of its own: its chart's map takes
- * its centroids inside the chart's island, where merged, its texture
- * would come from the neighbour's map.
- * Returns the number merged, or -1 on no memory. */
+ * it). A piece is kept instead, as a chart of its own, when no face of it
+ * lies surely over another chart and over half its area lies surely over
+ * its own (centroid_chart: -1 where the facing and the plain closest point
+ * disagree), and it borders more than one other chart or the mesh's border
+ * (inside a single chart it would make a hole in it): its chart's map takes
+ * it inside the chart's island, where merged, its texture would come from
+ * the neighbour's map. A piece once kept stays kept when a merged face
+ * joins it. Returns the number merged, or -1 on no memory. */
 static int merge_fragments(const face_graph *g, const int *centroid_chart, int *face_chart, int n_labels)
 {
     int nf = g->nf, merged = 0;
     union_find u;
     int *comp = mem_alloc(sizeof(int) * (size_t)nf);
-    double *carea = mem_alloc(sizeof(double) * (size_t)nf);
+    double *carea = mem_alloc(sizeof(double) * (size_t)nf), *sure = mem_alloc(sizeof(double) * (size_t)nf);
     int *best = mem_alloc(sizeof(int) * (size_t)n_labels);
     double *share = mem_calloc((size_t)n_labels, sizeof(double));
     int *order = mem_alloc(sizeof(int) * (size_t)nf);
     unsigned char *inside = mem_alloc((size_t)(nf > 0 ? nf : 1)), *multi = mem_alloc((size_t)(nf > 0 ? nf : 1));
     int *nb = mem_alloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
-    if (!comp || !carea || !best || !share || !order || !inside || !multi || !nb || uf_init(&u, nf)) {
-        mem_free(comp); mem_free(carea); mem_free(best); mem_free(share); mem_free(order); mem_free(inside);
-        mem_free(multi); mem_free(nb);
+    unsigned char *kept = mem_calloc((size_t)(nf > 0 ? nf : 1), 1);
+    if (!kept || !comp || !carea || !sure || !best || !share || !order || !inside || !multi || !nb || uf_init(&u, nf)) {
+        mem_free(comp); mem_free(carea); mem_free(sure); mem_free(best); mem_free(share); mem_free(order);
+        mem_free(inside); mem_free(multi); mem_free(nb); mem_free(kept);
         return -1;
     }
     for (int round = 0; round < 8; round++) {
@@ -163,13 +165,14 @@ static int merge_fragments(const face_graph *g, const int *centroid_chart, int *
             }
         int nc = uf_labels(&u, comp);
         if (nc < 0) { merged = -1; break; }
-        for (int c = 0; c < nc; c++) { carea[c] = 0; inside[c] = 1; }
+        for (int c = 0; c < nc; c++) { carea[c] = 0; sure[c] = 0; inside[c] = 1; }
         /* nb: the one other label around each piece so far (-1: none yet), multi: more than one, or a mesh border. */
         for (int c = 0; c < nc; c++) { nb[c] = -1; multi[c] = 0; }
         for (int f = 0; f < nf; f++) {
             int c = comp[f];
             carea[c] += g->area[f];
-            if (centroid_chart[f] != face_chart[f]) inside[c] = 0;
+            if (centroid_chart[f] == face_chart[f]) sure[c] += g->area[f];
+            else if (centroid_chart[f] >= 0) inside[c] = 0; /* surely over another chart */
             for (int k = 0; k < 3; k++) {
                 int h = g->adj[3 * f + k], l = h >= 0 ? face_chart[h] : -1;
                 if (h >= 0 && l == face_chart[f]) continue;
@@ -177,7 +180,12 @@ static int merge_fragments(const face_graph *g, const int *centroid_chart, int *
                 else nb[c] = l;
             }
         }
-        for (int c = 0; c < nc; c++) inside[c] = inside[c] && multi[c];
+        for (int c = 0; c < nc; c++) inside[c] = inside[c] && multi[c] && sure[c] > 0.5 * carea[c];
+        /* Once kept, kept: a face merged next to a kept piece does not undo it. */
+        for (int f = 0; f < nf; f++) {
+            if (kept[f]) inside[comp[f]] = 1;
+        }
+        for (int f = 0; f < nf; f++) kept[f] = inside[comp[f]];
         for (int l = 0; l < n_labels; l++) best[l] = -1;
         for (int c = 0; c < nc; c++) order[c] = -1;
         for (int f = 0; f < nf; f++) { /* largest piece of each label */
@@ -219,8 +227,8 @@ static int merge_fragments(const face_graph *g, const int *centroid_chart, int *
         if (!changed) break;
     }
     uf_free(&u);
-    mem_free(comp); mem_free(carea); mem_free(best); mem_free(share); mem_free(order); mem_free(inside);
-    mem_free(multi); mem_free(nb);
+    mem_free(comp); mem_free(carea); mem_free(sure); mem_free(best); mem_free(share); mem_free(order);
+    mem_free(inside); mem_free(multi); mem_free(nb); mem_free(kept);
     return merged;
 }
 
