@@ -198,6 +198,11 @@ static void test_overlap_pairs(void)
     CHECK_INT(uv_overlap_chart_pairs(m->uv, m->nf, m->tri_uv, chart, 2048, &pairs, &np), NEUV_OK);
     CHECK_INT(np, 0);
     free(pairs);
+    unsigned char *hit = malloc((size_t)m->nf);
+    CHECK_INT(uv_overlap_faces(m->uv, m->nf, m->tri_uv, chart, 2048, hit), NEUV_OK);
+    int nhit = 0;
+    for (int f = 0; f < m->nf; f++) nhit += hit[f];
+    CHECK_INT(nhit, 0);
     /* Per-corner UVs for chart 3 alone, shifted left by 0.1. */
     int nuv = m->nuv;
     double *uv = malloc(sizeof(double) * 2 * (nuv + 3 * m->nf));
@@ -215,6 +220,21 @@ static void test_overlap_pairs(void)
     CHECK_INT(np, 1);
     if (np == 1) { CHECK_INT(pairs[0], 2); CHECK_INT(pairs[1], 3); }
     free(pairs);
+    /* The faces hit: those of chart 2 in its right column of cells (x > 0.375) and those of
+     * chart 3 in its left column (x < 0.625 before the shift), and no other. */
+    CHECK_INT(uv_overlap_faces(uv, m->nf, tuv, chart, 2048, hit), NEUV_OK);
+    int hit2 = 0, hit3 = 0, stray = 0;
+    for (int f = 0; f < m->nf; f++) {
+        if (!hit[f]) continue;
+        double cx = 0;
+        for (int k = 0; k < 3; k++) cx += m->uv[2 * m->tri_uv[3 * f + k]] / 3;
+        if (chart[f] == 2 && cx > 0.375) hit2++;
+        else if (chart[f] == 3 && cx < 0.625) hit3++;
+        else stray++;
+    }
+    CHECK(hit2 >= 4 && hit2 <= 8);
+    CHECK_INT(hit3, 8); /* every face of the column reaches into [0.4, 0.5) */
+    CHECK_INT(stray, 0);
     /* Chart 3 shrunk to a small square about the centre: on all three others. */
     for (int f = 0; f < m->nf; f++)
         if (chart[f] == 3)
@@ -228,7 +248,8 @@ static void test_overlap_pairs(void)
     if (np == 3) { CHECK_INT(pairs[0], 0); CHECK_INT(pairs[1], 3); CHECK_INT(pairs[4], 2); CHECK_INT(pairs[5], 3); }
     free(pairs);
     CHECK_INT(uv_overlap_chart_pairs(uv, m->nf, tuv, chart, 0, &pairs, &np), NEUV_ERR_INPUT);
-    free(uv); free(tuv); free(chart);
+    CHECK_INT(uv_overlap_faces(uv, m->nf, tuv, chart, 0, hit), NEUV_ERR_INPUT);
+    free(uv); free(tuv); free(chart); free(hit);
     mesh_free(m);
 }
 

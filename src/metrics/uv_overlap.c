@@ -219,20 +219,18 @@ double uv_coverage_overlap_fraction(const uv_coverage *c)
 
 /* One covered run of pixel centres of one chart in one row. */
 typedef struct chart_span_px {
-    int row, lo, hi, chart;
+    int row, lo, hi, face;
 } chart_span_px;
 
-static int key_order(const void *x, const void *y)
+/* The pixel-centre spans of every face on the overlap raster, sorted by
+ * row: *spans (caller frees), row_start (#height + 1, caller frees).
+ * *height 0: nothing drawn. Returns NEUV_OK, NEUV_ERR_INPUT, NEUV_ERR_NOMEM. */
+static neuv_status face_spans_by_row(const double *uv, int nf, const int *tri_uv, int resolution,
+                                     chart_span_px **spans, int **row_start_out, int *width_out, int *height_out)
 {
-    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
-    return (a > b) - (a < b);
-}
-
-neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, const int *face_chart,
-                                   int resolution, int **pairs_out, int *n_pairs)
-{
-    *pairs_out = NULL;
-    *n_pairs = 0;
+    *spans = NULL;
+    *row_start_out = NULL;
+    *width_out = *height_out = 0;
     if (resolution < 1 || resolution > 32768)
         return error_set(NEUV_ERR_INPUT, "raster resolution %d is outside [1, 32768]", resolution);
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
@@ -269,18 +267,14 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
                 sp = g;
                 cap *= 2;
             }
-            sp[n++] = (chart_span_px){j, span_lo, span_hi, face_chart[f]};
+            sp[n++] = (chart_span_px){j, span_lo, span_hi, f};
         }
     }
-    /* By row (counting sort); then each row is painted with chart ids, and a
-     * pixel centre painted by another chart gives a pair. */
+    /* By row (counting sort). */
     int *row_start = mem_calloc((size_t)height + 1, sizeof *row_start);
     chart_span_px *sorted = mem_alloc(sizeof *sorted * (n > 0 ? n : 1));
-    int *owner = mem_alloc(sizeof *owner * (size_t)width);
-    size_t kcap = 64, nk = 0;
-    uint64_t *keys = mem_alloc(sizeof *keys * kcap);
-    if (!row_start || !sorted || !owner || !keys) {
-        mem_free(sp); mem_free(row_start); mem_free(sorted); mem_free(owner); mem_free(keys);
+    if (!row_start || !sorted) {
+        mem_free(sp); mem_free(row_start); mem_free(sorted);
         return error_nomem("overlap raster");
     }
     for (size_t i = 0; i < n; i++) row_start[sp[i].row + 1]++;
@@ -289,23 +283,53 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     for (int j = height; j > 0; j--) row_start[j] = row_start[j - 1];
     row_start[0] = 0;
     mem_free(sp);
-    sp = sorted;
+    *spans = sorted;
+    *row_start_out = row_start;
+    *width_out = width;
+    *height_out = height;
+    return NEUV_OK;
+}
+
+static int key_order(const void *x, const void *y)
+{
+    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+    return (a > b) - (a < b);
+}
+
+neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, const int *face_chart,
+                                   int resolution, int **pairs_out, int *n_pairs)
+{
+    *pairs_out = NULL;
+    *n_pairs = 0;
+    chart_span_px *sp;
+    int *row_start, width, height;
+    neuv_status st = face_spans_by_row(uv, nf, tri_uv, resolution, &sp, &row_start, &width, &height);
+    if (st || height == 0) return st;
+    /* Each row is painted with chart ids, and a pixel centre painted by another chart gives a pair. */
+    int *owner = mem_alloc(sizeof *owner * (size_t)width);
+    size_t kcap = 64, nk = 0;
+    uint64_t *keys = mem_alloc(sizeof *keys * kcap);
+    if (!owner || !keys) {
+        mem_free(sp); mem_free(row_start); mem_free(owner); mem_free(keys);
+        return error_nomem("overlap raster");
+    }
     uint64_t last = UINT64_MAX;
     for (int j = 0; j < height; j++) {
         if (row_start[j] == row_start[j + 1]) continue;
         for (int i = 0; i < width; i++) owner[i] = -1;
         for (int k = row_start[j]; k < row_start[j + 1]; k++) {
             const chart_span_px *t = &sp[k];
+            int tc = face_chart[t->face];
             for (int i = t->lo; i <= t->hi; i++) {
                 int o = owner[i];
-                owner[i] = t->chart;
-                if (o < 0 || o == t->chart) continue;
-                int p = o < t->chart ? o : t->chart, q = o < t->chart ? t->chart : o;
+                owner[i] = tc;
+                if (o < 0 || o == tc) continue;
+                int p = o < tc ? o : tc, q = o < tc ? tc : o;
                 uint64_t key = (uint64_t)(uint32_t)p << 32 | (uint32_t)q;
                 if (key == last) continue;
                 if (nk == kcap) {
                     uint64_t *g = mem_realloc(keys, sizeof *keys * kcap * 2);
-                    if (!g) { mem_free(sp); mem_free(owner); mem_free(keys); return error_nomem("overlap raster"); }
+                    if (!g) { mem_free(sp); mem_free(row_start); mem_free(owner); mem_free(keys); return error_nomem("overlap raster"); }
                     keys = g;
                     kcap *= 2;
                 }
@@ -328,5 +352,37 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
     mem_free(sp); mem_free(keys);
     *pairs_out = pairs;
     *n_pairs = (int)nu;
+    return NEUV_OK;
+}
+
+neuv_status uv_overlap_faces(const double *uv, int nf, const int *tri_uv, const int *face_chart, int resolution,
+                             unsigned char *hit)
+{
+    if (nf > 0) memset(hit, 0, (size_t)nf);
+    chart_span_px *sp;
+    int *row_start, width, height;
+    neuv_status st = face_spans_by_row(uv, nf, tri_uv, resolution, &sp, &row_start, &width, &height);
+    if (st || height == 0) return st;
+    /* Per row: the chart that paints each pixel centre first, -2 where a
+     * second chart paints it too; then every span over such a centre hits. */
+    int *owner = mem_alloc(sizeof *owner * (size_t)width);
+    if (!owner) { mem_free(sp); mem_free(row_start); return error_nomem("overlap raster"); }
+    for (int j = 0; j < height; j++) {
+        if (row_start[j] == row_start[j + 1]) continue;
+        for (int i = 0; i < width; i++) owner[i] = -1;
+        int any = 0;
+        for (int k = row_start[j]; k < row_start[j + 1]; k++) {
+            int tc = face_chart[sp[k].face];
+            for (int i = sp[k].lo; i <= sp[k].hi; i++) {
+                if (owner[i] == -1) owner[i] = tc;
+                else if (owner[i] != tc && owner[i] != -2) { owner[i] = -2; any = 1; }
+            }
+        }
+        if (!any) continue;
+        for (int k = row_start[j]; k < row_start[j + 1]; k++)
+            for (int i = sp[k].lo; i <= sp[k].hi && !hit[sp[k].face]; i++)
+                if (owner[i] == -2) hit[sp[k].face] = 1;
+    }
+    mem_free(sp); mem_free(row_start); mem_free(owner);
     return NEUV_OK;
 }

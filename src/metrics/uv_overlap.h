@@ -37,6 +37,13 @@ neuv_status uv_coverage_count(const double *uv, int nf, const int *tri_uv,
 neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, const int *face_chart,
                                    int resolution, int **pairs, int *n_pairs);
 
+/* The faces that cover a pixel centre which faces of two or more charts
+ * cover, under the same rule and raster as uv_overlap_chart_pairs.
+ * Outputs: hit (#F): 1 for such a face, else 0.
+ * Returns NEUV_OK, NEUV_ERR_INPUT (resolution), NEUV_ERR_NOMEM. */
+neuv_status uv_overlap_faces(const double *uv, int nf, const int *tri_uv, const int *face_chart, int resolution,
+                             unsigned char *hit);
+
 /* overlapped / covered (0 when nothing is covered). */
 double uv_coverage_overlap_fraction(const uv_coverage *c);
 

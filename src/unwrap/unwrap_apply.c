@@ -645,7 +645,8 @@ static neuv_status chart_spans(const struct neuv_unwrap_result *r, chart_span **
  * corner past the seam continues its chart's map beyond the island's
  * border, into the gutter and at worst onto the next island. Those corners
  * (the ones whose closest source point lies in another chart) of a chart
- * that overlaps another or leaves [0,1]^2 are pulled toward the source UV
+ * that overlaps another or leaves [0,1]^2, on a face that covers an
+ * overlapped pixel (any, for a chart that leaves [0,1]^2), are pulled toward the source UV
  * at their closest point ON their chart, which lies inside the island:
  * first to half the packing's gap from it, then onto it. Faces a pull
  * collapses or folds have it eased (uv_pull_ease); a pull that would still
@@ -658,12 +659,13 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
     neuv_mesh *m = r->mesh;
     int nc = r->n_charts;
     neuv_status s = NEUV_OK;
-    unsigned char *hot = mem_alloc((size_t)(nc > 0 ? nc : 1));
+    unsigned char *hot = mem_alloc((size_t)(nc > 0 ? nc : 1)), *out = mem_alloc((size_t)(nc > 0 ? nc : 1));
     int maxv = 1;
     for (int c = 0; c < nc; c++) if (pieces[c].sub->nv > maxv) maxv = pieces[c].sub->nv;
     double *keep = mem_alloc(sizeof(double) * 2 * (size_t)maxv), *scratch = mem_alloc(sizeof(double) * 2 * (size_t)maxv);
     int *pulled = mem_calloc((size_t)(nc > 0 ? nc : 1), sizeof(int));
-    if (!hot || !keep || !scratch || !pulled) s = error_nomem("overlap test");
+    unsigned char *hit = mem_alloc((size_t)(m->nf > 0 ? m->nf : 1)), *near = mem_alloc((size_t)maxv);
+    if (!hot || !out || !keep || !scratch || !pulled || !hit || !near) s = error_nomem("overlap test");
     /* How far past its island a corner may stay, per round: half the gap the
      * packing left between islands, then none. */
     const double reach[2] = {0.5 * r->opts.padding / (r->opts.resolution > 0 ? r->opts.resolution : 1), 0.0};
@@ -672,21 +674,29 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
         for (int c = 0; c < nc; c++) {
             span_bounds(m, &span[c]);
             chart_span *A = &span[c];
-            hot[c] = A->lo[0] < 0 || A->lo[1] < 0 || A->hi[0] > 1 || A->hi[1] > 1;
+            hot[c] = out[c] = A->lo[0] < 0 || A->lo[1] < 0 || A->hi[0] > 1 || A->hi[1] > 1;
             any |= hot[c];
         }
         if ((s = overlapping_pairs(r, &pairs, &np))) break;
         for (int k = 0; k < 2 * np; k++) hot[pairs[k]] = 1;
         mem_free(pairs);
         if (!any && np == 0) break;
+        /* Only the faces on an overlap: the corners past the seam elsewhere stay. */
+        if (np > 0 && (s = uv_overlap_faces(m->uv, m->nf, m->tri_uv, r->face_chart, OVERLAP_RESOLUTION, hit))) break;
+        if (np == 0) memset(hit, 0, (size_t)m->nf);
         for (int c = 0; c < nc && s == NEUV_OK; c++) {
             if (!hot[c]) continue;
             chart_piece *p = &pieces[c];
             int n = p->sub->nv, moved = 0;
             double *uv = m->uv + 2 * (size_t)span[c].first;
             memcpy(keep, uv, sizeof(double) * 2 * (size_t)n);
+            /* near: corners of its faces on an overlap (all, for a chart that leaves [0,1]^2). */
+            memset(near, out[c], (size_t)n);
+            for (int lf = 0; lf < p->sub->nf && !out[c]; lf++)
+                if (hit[p->fmap[lf]])
+                    for (int k = 0; k < 3; k++) near[p->sub->tri[3 * lf + k]] = 1;
             for (int v = 0; v < n; v++) {
-                if (vertex_chart[p->vmap[v]] == model_chart[c]) continue;
+                if (vertex_chart[p->vmap[v]] == model_chart[c] || !near[v]) continue;
                 double dx = uv[2 * v] - anchor[c][2 * v], dy = uv[2 * v + 1] - anchor[c][2 * v + 1];
                 double d = sqrt(dx * dx + dy * dy);
                 if (d <= reach[round]) continue;
@@ -716,7 +726,7 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
             unwrap_add_repair(r, c, "%d corners past the source chart's seam overlapped or left the atlas; pulled toward "
                               "the source chart's border (the chart stays in place)", pulled[c]);
         }
-    mem_free(hot); mem_free(keep); mem_free(scratch); mem_free(pulled);
+    mem_free(hot); mem_free(out); mem_free(keep); mem_free(scratch); mem_free(pulled); mem_free(hit); mem_free(near);
     return s;
 }
 
