@@ -646,7 +646,7 @@ static neuv_status chart_spans(const struct neuv_unwrap_result *r, chart_span **
  * border, into the gutter and at worst onto the next island. Those corners
  * (the ones whose closest source point lies in another chart) of a chart
  * that overlaps another or leaves [0,1]^2, on a face that covers an
- * overlapped pixel (any, for a chart that leaves [0,1]^2), are pulled toward the source UV
+ * overlapped pixel or outside [0,1]^2 themselves, are pulled toward the source UV
  * at their closest point ON their chart, which lies inside the island:
  * first to half the packing's gap from it, then onto it. Faces a pull
  * collapses or folds have it eased (uv_pull_ease); a pull that would still
@@ -690,9 +690,10 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
             int n = p->sub->nv, moved = 0;
             double *uv = m->uv + 2 * (size_t)span[c].first;
             memcpy(keep, uv, sizeof(double) * 2 * (size_t)n);
-            /* near: corners of its faces on an overlap (all, for a chart that leaves [0,1]^2). */
-            memset(near, out[c], (size_t)n);
-            for (int lf = 0; lf < p->sub->nf && !out[c]; lf++)
+            /* near: corners of its faces on an overlap, and corners outside [0,1]^2. */
+            for (int v = 0; v < n; v++)
+                near[v] = out[c] && (uv[2 * v] < 0 || uv[2 * v] > 1 || uv[2 * v + 1] < 0 || uv[2 * v + 1] > 1);
+            for (int lf = 0; lf < p->sub->nf; lf++)
                 if (hit[p->fmap[lf]])
                     for (int k = 0; k < 3; k++) near[p->sub->tri[3 * lf + k]] = 1;
             for (int v = 0; v < n; v++) {
