@@ -95,8 +95,9 @@ done
 
 # Half the faces, plain and jittered: the border zigzag cuts pieces off the charts, which stay
 # charts of their own (model.fragment_charts) instead of taking a neighbour's map. Measured mean
-# 1.1e-3 and 1.2e-3, p95 7.7e-3 and 7.9e-3, agreement 99.89% and 99.85%; with every piece merged
-# (before 2026-12-07) mean 2.6e-2 and 2.7e-2, agreement 97.7% on both.
+# 2.2e-4 and 3.3e-4, p95 3.0e-4 and 3.9e-4, agreement 99.89% and 99.85%; with every piece merged
+# and every corner past the seam of an overlapping chart pulled (before 2026-12-07) mean 2.6e-2
+# and 2.7e-2, p95 1.2e-2 and 1.5e-2, agreement 97.7% on both.
 "$NEUV" remesh "$IN" --faces $((FACES / 2)) -o "$TMP/half.obj" --quiet && ok || bad "remesh --faces (half) failed"
 "$NEUV" remesh "$TMP/half.obj" --jitter -o "$TMP/halfj.obj" --quiet && ok || bad "remesh --jitter (half) failed"
 for t in half halfj; do
