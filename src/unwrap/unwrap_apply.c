@@ -131,7 +131,8 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
  * coarser or finer triangulation can isolate a few faces) are merged into
  * the neighbouring chart they share the longest border with, smallest
  * first, until every such piece is merged (or has no other chart around
- * it). A piece is kept instead, as a chart of its own, when no face of it
+ * it). A piece is kept instead (keep_pieces: not where the atlas is packed
+ * afresh, as for a simplified copy's model), as a chart of its own, when no face of it
  * lies surely over another chart and over half its area lies surely over
  * its own (centroid_chart: -1 where the facing and the plain closest point
  * disagree), and it borders more than one other chart or the mesh's border
@@ -139,7 +140,8 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
  * it inside the chart's island, where merged, its texture would come from
  * the neighbour's map. A piece once kept stays kept when a merged face
  * joins it. Returns the number merged, or -1 on no memory. */
-static int merge_fragments(const face_graph *g, const int *centroid_chart, int *face_chart, int n_labels)
+static int merge_fragments(const face_graph *g, const int *centroid_chart, int keep_pieces, int *face_chart,
+                           int n_labels)
 {
     int nf = g->nf, merged = 0;
     union_find u;
@@ -180,7 +182,7 @@ static int merge_fragments(const face_graph *g, const int *centroid_chart, int *
                 else nb[c] = l;
             }
         }
-        for (int c = 0; c < nc; c++) inside[c] = inside[c] && multi[c] && sure[c] > 0.5 * carea[c];
+        for (int c = 0; c < nc; c++) inside[c] = keep_pieces && inside[c] && multi[c] && sure[c] > 0.5 * carea[c];
         /* Once kept, kept: a face merged next to a kept piece does not undo it. */
         for (int f = 0; f < nf; f++) {
             if (kept[f]) inside[comp[f]] = 1;
@@ -1007,11 +1009,11 @@ neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model
     int *piece = NULL;
     int n_pieces = 0;
     if (s == NEUV_OK) {
-        int merged = merge_fragments(&g, centroid_chart, label, md->n_charts);
+        int merged = merge_fragments(&g, centroid_chart, !o->refine_on_mesh, label, md->n_charts);
         if (merged < 0) s = error_nomem("charts");
         int settled = s == NEUV_OK && !o->refine_on_mesh ? settle_border_faces(m, md, &g, label, &s) : 0;
         if (s == NEUV_OK && settled > 0) {
-            int again = merge_fragments(&g, centroid_chart, label, md->n_charts);
+            int again = merge_fragments(&g, centroid_chart, !o->refine_on_mesh, label, md->n_charts);
             if (again < 0) s = error_nomem("charts");
             else merged += again;
         }
@@ -1019,12 +1021,18 @@ neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model
         r->model.settled_faces = settled > 0 ? settled : 0;
         piece = mem_alloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
         if (s == NEUV_OK && !piece) s = error_nomem("charts");
-        if (s == NEUV_OK && (n_pieces = label_pieces(&g, label, piece)) < 0) s = error_nomem("charts");
+        if (s == NEUV_OK && !o->refine_on_mesh && (n_pieces = label_pieces(&g, label, piece)) < 0)
+            s = error_nomem("charts");
+        if (s == NEUV_OK && o->refine_on_mesh) { /* one chart per source chart, as packed afresh */
+            memcpy(piece, label, sizeof(int) * (size_t)m->nf);
+            n_pieces = md->n_charts;
+        }
         face_graph_free(&g);
     }
-    /* One chart per connected piece of a source chart's faces, in the
-     * source's chart order (pieces of one chart in order of their first
-     * face); source charts that got no face are dropped. */
+    /* One chart per connected piece of a source chart's faces (per source
+     * chart for a simplified copy's model), in the source's chart order
+     * (pieces of one chart in order of their first face); source charts
+     * that got no face are dropped. */
     int *model_chart = r->model.source_chart = mem_alloc(sizeof(int) * (size_t)(n_pieces > 0 ? n_pieces : 1));
     int *new_id = mem_alloc(sizeof(int) * (size_t)(n_pieces > 0 ? n_pieces : 1));
     int *first = mem_calloc((size_t)md->n_charts + 1, sizeof(int));
@@ -1037,14 +1045,17 @@ neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model
         int used = 0;
         for (int c = 0; c < md->n_charts; c++) used += first[c + 1] > 0;
         for (int c = 0; c < md->n_charts; c++) first[c + 1] += first[c];
+        int charts = 0;
         for (int p = 0; p < n_pieces; p++) { /* pieces are numbered by first face: stable per label */
             int l = new_id[p];
+            if (l < 0) continue; /* a source chart without faces */
             model_chart[first[l]] = l;
             new_id[p] = first[l]++;
+            charts++;
         }
-        r->n_charts = n_pieces;
+        r->n_charts = charts;
         r->model.empty_charts = md->n_charts - used;
-        r->model.fragment_charts = n_pieces - used;
+        r->model.fragment_charts = charts - used;
         for (int f = 0; f < m->nf; f++) r->face_chart[f] = new_id[piece[f]];
     }
     mem_free(piece);
