@@ -214,10 +214,8 @@ neuv_status uv_compare(const neuv_mesh *a, const neuv_mesh *b, uv_compare_result
     /* Again with the closest point facing the same way as the B face. */
 #pragma omp parallel for schedule(dynamic, 256)
     for (int f = 0; f < b->nf; f++) {
-        const int *t = b->tri + 3 * (size_t)f;
-        const double *p0 = b->pos + 3 * (size_t)t[0], *p1 = b->pos + 3 * (size_t)t[1], *p2 = b->pos + 3 * (size_t)t[2];
-        double e0[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e1[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-        double n[3] = {e0[1] * e1[2] - e0[2] * e1[1], e0[2] * e1[0] - e0[0] * e1[2], e0[0] * e1[1] - e0[1] * e1[0]};
+        double n[3];
+        mesh_face_normal(b, f, n);
         int af;
         bvh_closest_point_facing(&tree, pts + 3 * (size_t)f, n, &af, NULL, NULL);
         label[f] = chart_a[af];

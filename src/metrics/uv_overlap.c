@@ -217,16 +217,16 @@ double uv_coverage_overlap_fraction(const uv_coverage *c)
     return c->covered > 0 ? (double)c->overlapped / (double)c->covered : 0.0;
 }
 
-/* One covered run of pixel centres of one chart in one row. */
-typedef struct chart_span_px {
+/* One covered run of pixel centres of one face in one row. */
+typedef struct face_span_px {
     int row, lo, hi, face;
-} chart_span_px;
+} face_span_px;
 
 /* The pixel-centre spans of every face on the overlap raster, sorted by
  * row: *spans (caller frees), row_start (#height + 1, caller frees).
  * *height 0: nothing drawn. Returns NEUV_OK, NEUV_ERR_INPUT, NEUV_ERR_NOMEM. */
 static neuv_status face_spans_by_row(const double *uv, int nf, const int *tri_uv, int resolution,
-                                     chart_span_px **spans, int **row_start_out, int *width_out, int *height_out)
+                                     face_span_px **spans, int **row_start_out, int *width_out, int *height_out)
 {
     *spans = NULL;
     *row_start_out = NULL;
@@ -248,7 +248,7 @@ static neuv_status face_spans_by_row(const double *uv, int nf, const int *tri_uv
     if (width < 1) width = 1;
     if (height < 1) height = 1;
     size_t cap = 4 * (size_t)(nf > 0 ? nf : 1), n = 0;
-    chart_span_px *sp = mem_alloc(sizeof *sp * cap);
+    face_span_px *sp = mem_alloc(sizeof *sp * cap);
     if (!sp) return error_nomem("overlap raster");
     for (int f = 0; f < nf; f++) {
         raster_edge e[3];
@@ -262,17 +262,17 @@ static neuv_status face_spans_by_row(const double *uv, int nf, const int *tri_uv
             for (int k = 0; k < 3 && span_lo <= span_hi; k++) edge_clip_span(&e[k], j + 0.5, &span_lo, &span_hi);
             if (span_lo > span_hi) continue;
             if (n == cap) {
-                chart_span_px *g = mem_realloc(sp, sizeof *sp * cap * 2);
+                face_span_px *g = mem_realloc(sp, sizeof *sp * cap * 2);
                 if (!g) { mem_free(sp); return error_nomem("overlap raster"); }
                 sp = g;
                 cap *= 2;
             }
-            sp[n++] = (chart_span_px){j, span_lo, span_hi, f};
+            sp[n++] = (face_span_px){j, span_lo, span_hi, f};
         }
     }
     /* By row (counting sort). */
     int *row_start = mem_calloc((size_t)height + 1, sizeof *row_start);
-    chart_span_px *sorted = mem_alloc(sizeof *sorted * (n > 0 ? n : 1));
+    face_span_px *sorted = mem_alloc(sizeof *sorted * (n > 0 ? n : 1));
     if (!row_start || !sorted) {
         mem_free(sp); mem_free(row_start); mem_free(sorted);
         return error_nomem("overlap raster");
@@ -301,7 +301,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
 {
     *pairs_out = NULL;
     *n_pairs = 0;
-    chart_span_px *sp;
+    face_span_px *sp;
     int *row_start, width, height;
     neuv_status st = face_spans_by_row(uv, nf, tri_uv, resolution, &sp, &row_start, &width, &height);
     if (st || height == 0) return st;
@@ -318,7 +318,7 @@ neuv_status uv_overlap_chart_pairs(const double *uv, int nf, const int *tri_uv, 
         if (row_start[j] == row_start[j + 1]) continue;
         for (int i = 0; i < width; i++) owner[i] = -1;
         for (int k = row_start[j]; k < row_start[j + 1]; k++) {
-            const chart_span_px *t = &sp[k];
+            const face_span_px *t = &sp[k];
             int tc = face_chart[t->face];
             for (int i = t->lo; i <= t->hi; i++) {
                 int o = owner[i];
@@ -359,7 +359,7 @@ neuv_status uv_overlap_faces(const double *uv, int nf, const int *tri_uv, const 
                              unsigned char *hit)
 {
     if (nf > 0) memset(hit, 0, (size_t)nf);
-    chart_span_px *sp;
+    face_span_px *sp;
     int *row_start, width, height;
     neuv_status st = face_spans_by_row(uv, nf, tri_uv, resolution, &sp, &row_start, &width, &height);
     if (st || height == 0) return st;

@@ -50,9 +50,9 @@
  * mesh: a long triangle cutting a curved region has its centroid nearer
  * the chart next door.
  * Outputs: face_chart (#F, model chart ids), src_face (#F, under the centroid),
- * centroid_chart (#F: the chart under the centroid when the closest point
- * facing the same way and the plain closest point agree on it, else -1:
- * where they differ the surface is thin or two sheets touch),
+ * centroid_chart (#F, or NULL for none: the chart under the centroid when
+ * the closest point facing the same way and the plain closest point agree
+ * on it, else -1: where they differ the surface is thin or two sheets touch),
  * vertex_chart (#V, the model chart under each vertex), *max_dist. */
 static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, int *face_chart, int *src_face,
                                    int *centroid_chart, int *vertex_chart, double *max_dist)
@@ -113,11 +113,13 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
         if (d2[4 * (size_t)f] > worst) worst = d2[4 * (size_t)f];
     }
     *max_dist = sqrt(worst);
-    for (int f = 0; f < m->nf; f++) memmove(pt + 3 * (size_t)f, pt + 3 * (4 * (size_t)f), sizeof(double) * 3);
-    bvh_closest_points(&b, m->nf, pt, sf, NULL, NULL);
-    for (int f = 0; f < m->nf; f++) {
-        int c = md->face_chart[src_face[f]];
-        centroid_chart[f] = md->face_chart[sf[f]] == c ? c : -1;
+    if (centroid_chart) {
+        for (int f = 0; f < m->nf; f++) memmove(pt + 3 * (size_t)f, pt + 3 * (4 * (size_t)f), sizeof(double) * 3);
+        bvh_closest_points(&b, m->nf, pt, sf, NULL, NULL);
+        for (int f = 0; f < m->nf; f++) {
+            int c = md->face_chart[src_face[f]];
+            centroid_chart[f] = md->face_chart[sf[f]] == c ? c : -1;
+        }
     }
 #pragma omp parallel for schedule(dynamic, 256)
     for (int v = 0; v < m->nv; v++) bvh_closest_point_facing(&b, m->pos + 3 * (size_t)v, vn + 3 * (size_t)v, sf + v, NULL, NULL);
@@ -127,54 +129,69 @@ static neuv_status transfer_charts(const neuv_mesh *m, const unwrap_model *md, i
     return NEUV_OK;
 }
 
+/* Edge-connected pieces of equal label: piece (#F) gets a dense id per
+ * piece, numbered in order of each piece's first face. The border zigzag
+ * of a coarser or finer triangulation can cut a few faces of a chart off
+ * from the rest; they keep their chart's map as a chart of their own
+ * (merged into a neighbour, their texture would come from the neighbour's
+ * map). Returns the number of pieces, or -1 on no memory. */
+static int label_pieces(const face_graph *g, const int *label, int *piece)
+{
+    union_find u;
+    if (uf_init(&u, g->nf)) return -1;
+    for (int f = 0; f < g->nf; f++)
+        for (int k = 0; k < 3; k++) {
+            int h = g->adj[3 * f + k];
+            if (h >= 0 && label[h] == label[f]) uf_union(&u, f, h);
+        }
+    int n = uf_labels(&u, piece);
+    uf_free(&u);
+    return n;
+}
+
 /* Pieces of a chart cut off from its largest piece (the border zigzag of a
  * coarser or finer triangulation can isolate a few faces) are merged into
  * the neighbouring chart they share the longest border with, smallest
  * first, until every such piece is merged (or has no other chart around
- * it). A piece is kept instead (keep_pieces: not where the atlas is packed
- * afresh, as for a simplified copy's model), as a chart of its own, when no face of it
- * lies surely over another chart and over half its area lies surely over
- * its own (centroid_chart: -1 where the facing and the plain closest point
- * disagree), and it borders more than one other chart or the mesh's border
- * (inside a single chart it would make a hole in it): its chart's map takes
- * it inside the chart's island, where merged, its texture would come from
- * the neighbour's map. A piece once kept stays kept when a merged face
- * joins it. Returns the number merged, or -1 on no memory. */
-static int merge_fragments(const face_graph *g, const int *centroid_chart, int keep_pieces, int *face_chart,
-                           int n_labels)
+ * it). With centroid_chart (NULL where the atlas is packed afresh, as for
+ * a simplified copy's model), a piece is kept instead, as a chart of its
+ * own, when no face of it lies surely over another chart and over half its
+ * area lies surely over its own (centroid_chart: -1 where the facing and
+ * the plain closest point disagree), and it borders more than one other
+ * chart or the mesh's border (inside a single chart it would make a hole in
+ * it): its chart's map takes it inside the chart's island, where merged,
+ * its texture would come from the neighbour's map. A piece once kept stays
+ * kept when a merged face joins it. Returns the number merged, or -1 on no
+ * memory. */
+static int merge_fragments(const face_graph *g, const int *centroid_chart, int *face_chart, int n_labels)
 {
     int nf = g->nf, merged = 0;
-    union_find u;
     int *comp = mem_alloc(sizeof(int) * (size_t)nf);
     double *carea = mem_alloc(sizeof(double) * (size_t)nf), *sure = mem_alloc(sizeof(double) * (size_t)nf);
     int *best = mem_alloc(sizeof(int) * (size_t)n_labels);
     double *share = mem_calloc((size_t)n_labels, sizeof(double));
     int *order = mem_alloc(sizeof(int) * (size_t)nf);
-    unsigned char *inside = mem_alloc((size_t)(nf > 0 ? nf : 1)), *multi = mem_alloc((size_t)(nf > 0 ? nf : 1));
+    /* keep: per piece, kept as a chart of its own; kept: per face, in a piece kept in an earlier round. */
+    unsigned char *keep = mem_alloc((size_t)(nf > 0 ? nf : 1)), *multi = mem_alloc((size_t)(nf > 0 ? nf : 1));
     int *nb = mem_alloc(sizeof(int) * (size_t)(nf > 0 ? nf : 1));
     unsigned char *kept = mem_calloc((size_t)(nf > 0 ? nf : 1), 1);
-    if (!kept || !comp || !carea || !sure || !best || !share || !order || !inside || !multi || !nb || uf_init(&u, nf)) {
+    if (!kept || !comp || !carea || !sure || !best || !share || !order || !keep || !multi || !nb) {
         mem_free(comp); mem_free(carea); mem_free(sure); mem_free(best); mem_free(share); mem_free(order);
-        mem_free(inside); mem_free(multi); mem_free(nb); mem_free(kept);
+        mem_free(keep); mem_free(multi); mem_free(nb); mem_free(kept);
         return -1;
     }
     for (int round = 0; round < 8; round++) {
-        for (int f = 0; f < nf; f++) { u.parent[f] = f; u.size[f] = 1; } /* reset the sets */
-        for (int f = 0; f < nf; f++)
-            for (int k = 0; k < 3; k++) {
-                int h = g->adj[3 * f + k];
-                if (h >= 0 && face_chart[h] == face_chart[f]) uf_union(&u, f, h);
-            }
-        int nc = uf_labels(&u, comp);
+        int nc = label_pieces(g, face_chart, comp);
         if (nc < 0) { merged = -1; break; }
-        for (int c = 0; c < nc; c++) { carea[c] = 0; sure[c] = 0; inside[c] = 1; }
+        for (int c = 0; c < nc; c++) { carea[c] = 0; sure[c] = 0; keep[c] = centroid_chart != NULL; }
         /* nb: the one other label around each piece so far (-1: none yet), multi: more than one, or a mesh border. */
         for (int c = 0; c < nc; c++) { nb[c] = -1; multi[c] = 0; }
         for (int f = 0; f < nf; f++) {
             int c = comp[f];
             carea[c] += g->area[f];
+            if (!centroid_chart) continue;
             if (centroid_chart[f] == face_chart[f]) sure[c] += g->area[f];
-            else if (centroid_chart[f] >= 0) inside[c] = 0; /* surely over another chart */
+            else if (centroid_chart[f] >= 0) keep[c] = 0; /* surely over another chart */
             for (int k = 0; k < 3; k++) {
                 int h = g->adj[3 * f + k], l = h >= 0 ? face_chart[h] : -1;
                 if (h >= 0 && l == face_chart[f]) continue;
@@ -182,12 +199,11 @@ static int merge_fragments(const face_graph *g, const int *centroid_chart, int k
                 else nb[c] = l;
             }
         }
-        for (int c = 0; c < nc; c++) inside[c] = keep_pieces && inside[c] && multi[c] && sure[c] > 0.5 * carea[c];
+        for (int c = 0; c < nc; c++) keep[c] = keep[c] && multi[c] && sure[c] > 0.5 * carea[c];
         /* Once kept, kept: a face merged next to a kept piece does not undo it. */
-        for (int f = 0; f < nf; f++) {
-            if (kept[f]) inside[comp[f]] = 1;
-        }
-        for (int f = 0; f < nf; f++) kept[f] = inside[comp[f]];
+        for (int f = 0; f < nf; f++)
+            if (kept[f]) keep[comp[f]] = 1;
+        for (int f = 0; f < nf; f++) kept[f] = keep[comp[f]];
         for (int l = 0; l < n_labels; l++) best[l] = -1;
         for (int c = 0; c < nc; c++) order[c] = -1;
         for (int f = 0; f < nf; f++) { /* largest piece of each label */
@@ -199,7 +215,7 @@ static int merge_fragments(const face_graph *g, const int *centroid_chart, int k
         int n_frag = 0;
         for (int f = 0; f < nf; f++) {
             int c = comp[f];
-            if (c != best[face_chart[f]] && !inside[c] && order[c] < 0) order[c] = n_frag++;
+            if (c != best[face_chart[f]] && !keep[c] && order[c] < 0) order[c] = n_frag++;
         }
         if (n_frag == 0) break;
         int changed = 0;
@@ -228,32 +244,11 @@ static int merge_fragments(const face_graph *g, const int *centroid_chart, int k
         }
         if (!changed) break;
     }
-    uf_free(&u);
     mem_free(comp); mem_free(carea); mem_free(sure); mem_free(best); mem_free(share); mem_free(order);
-    mem_free(inside); mem_free(multi); mem_free(nb); mem_free(kept);
+    mem_free(keep); mem_free(multi); mem_free(nb); mem_free(kept);
     return merged;
 }
 
-
-/* Edge-connected pieces of equal label: piece (#F) gets a dense id per
- * piece, numbered in order of each piece's first face. The border zigzag
- * of a coarser or finer triangulation can cut a few faces of a chart off
- * from the rest; they keep their chart's map as a chart of their own
- * (merged into a neighbour, their texture would come from the neighbour's
- * map). Returns the number of pieces, or -1 on no memory. */
-static int label_pieces(const face_graph *g, const int *label, int *piece)
-{
-    union_find u;
-    if (uf_init(&u, g->nf)) return -1;
-    for (int f = 0; f < g->nf; f++)
-        for (int k = 0; k < 3; k++) {
-            int h = g->adj[3 * f + k];
-            if (h >= 0 && label[h] == label[f]) uf_union(&u, f, h);
-        }
-    int n = uf_labels(&u, piece);
-    uf_free(&u);
-    return n;
-}
 
 /* ---- per-chart UVs ------------------------------------------------------ */
 
@@ -998,22 +993,23 @@ neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model
         mem_free(label); mem_free(src_face);
         return error_nomem("charts");
     }
-    /* The chart under each face's centroid: a cut-off piece is kept where it agrees. */
-    int *centroid_chart = mem_alloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
+    /* The chart under each face's centroid: a cut-off piece is kept where it
+     * agrees (not for a simplified copy's model, whose atlas is packed afresh). */
+    int *centroid_chart = o->refine_on_mesh ? NULL : mem_alloc(sizeof(int) * (size_t)(m->nf > 0 ? m->nf : 1));
     double dist = 0;
-    s = centroid_chart ? transfer_charts(m, md, label, src_face, centroid_chart, vertex_chart, &dist)
-                       : error_nomem("charts");
+    if (!o->refine_on_mesh && !centroid_chart) s = error_nomem("charts");
+    else s = transfer_charts(m, md, label, src_face, centroid_chart, vertex_chart, &dist);
     r->model.surface_distance = md->norm[3] > 0 ? dist / md->norm[3] : 0;
     face_graph g;
     if (s == NEUV_OK) s = face_graph_build(m, &g);
     int *piece = NULL;
     int n_pieces = 0;
     if (s == NEUV_OK) {
-        int merged = merge_fragments(&g, centroid_chart, !o->refine_on_mesh, label, md->n_charts);
+        int merged = merge_fragments(&g, centroid_chart, label, md->n_charts);
         if (merged < 0) s = error_nomem("charts");
         int settled = s == NEUV_OK && !o->refine_on_mesh ? settle_border_faces(m, md, &g, label, &s) : 0;
         if (s == NEUV_OK && settled > 0) {
-            int again = merge_fragments(&g, centroid_chart, !o->refine_on_mesh, label, md->n_charts);
+            int again = merge_fragments(&g, centroid_chart, label, md->n_charts);
             if (again < 0) s = error_nomem("charts");
             else merged += again;
         }
@@ -1038,7 +1034,7 @@ neuv_status unwrap_apply_charts(struct neuv_unwrap_result *r, const unwrap_model
     int *first = mem_calloc((size_t)md->n_charts + 1, sizeof(int));
     if (s == NEUV_OK && (!model_chart || !new_id || !first)) s = error_nomem("charts");
     if (s == NEUV_OK) {
-        /* piece_label[p] through new_id: the label of each piece, counted per label. */
+        /* new_id first holds each piece's label; first[] counts the pieces per label. */
         for (int p = 0; p < n_pieces; p++) new_id[p] = -1;
         for (int f = 0; f < m->nf; f++)
             if (new_id[piece[f]] < 0) { new_id[piece[f]] = label[f]; first[label[f] + 1]++; }
