@@ -102,8 +102,10 @@ static int naive_free_run(const occupancy *o, int y)
     return best;
 }
 
-/* levels < 0: occupancy_init's own choice. */
-static void test_mark_and_find(rng *r, int size, int border, int pad, int levels)
+/* levels < 0: occupancy_init's own choice. steps footprints up to size / div
+ * pixels on a side are placed one after another (many small ones crowd the
+ * atlas: rows fail the free-run test and the search skips them). */
+static void test_mark_and_find(rng *r, int size, int border, int pad, int levels, int steps, int div)
 {
     occupancy o;
     CHECK((levels < 0 ? occupancy_init(&o, size, border) : occupancy_init_levels(&o, size, border, levels)) == 0);
@@ -112,10 +114,10 @@ static void test_mark_and_find(rng *r, int size, int border, int pad, int levels
     for (int y = 0; y < size; y++)
         for (int x = 0; x < size; x++)
             naive[(size_t)y * size + x] = x < border || y < border || x >= size - border || y >= size - border;
-    int bad_mark = 0, bad_run = 0, bad_find = 0, found = 0, bad_nearest = 0, near_found = 0;
-    for (int step = 0; step < 25; step++) {
+    int bad_mark = 0, bad_run = 0, bad_find = 0, found = 0, bad_nearest = 0, near_found = 0, bad_bound = 0;
+    for (int step = 0; step < steps; step++) {
         footprint f;
-        random_footprint(r, 3 + (int)(rng_uniform(r) * size / 4), 3 + (int)(rng_uniform(r) * size / 4), &f);
+        random_footprint(r, 3 + (int)(rng_uniform(r) * size / div), 3 + (int)(rng_uniform(r) * size / div), &f);
         footprint_spans s;
         CHECK(footprint_to_spans(&f, &s) == 0);
         /* Where it fits, pixel by pixel: every covered pixel free, inside the atlas. */
@@ -130,6 +132,12 @@ static void test_mark_and_find(rng *r, int size, int border, int pad, int levels
             }
         int x, y, ok = occupancy_find(&o, &s, size, &x, &y);
         bad_find += ok != (by >= 0) || (ok && (x != bx || y != by));
+        if (ok) {
+            /* The top bound includes its row (the packer keeps ties), and excludes the next one. */
+            int tx, ty;
+            bad_bound += !occupancy_find(&o, &s, by + f.h, &tx, &ty) || tx != bx || ty != by;
+            bad_bound += occupancy_find(&o, &s, by + f.h - 1, &tx, &ty);
+        }
         /* The fit nearest to a random point, pixel by pixel (ties: lower y, then lower x). */
         int px = (int)(rng_uniform(r) * size), py = (int)(rng_uniform(r) * size), nx = -1, ny = -1;
         long long nd = -1;
@@ -169,6 +177,7 @@ static void test_mark_and_find(rng *r, int size, int border, int pad, int levels
     CHECK_INT(bad_mark, 0);
     CHECK_INT(bad_run, 0);
     CHECK_INT(bad_find, 0);
+    CHECK_INT(bad_bound, 0);
     CHECK_INT(bad_nearest, 0);
     CHECK(near_found >= 5);
     CHECK(found >= 5); /* the search was exercised on real fits, not only misses */
@@ -224,10 +233,11 @@ int main(void)
     test_run_blocked(&r, 256);
     /* Sizes on and off the 64-pixel word, with and without padding; the
      * search gives the same places with fewer blocked-run levels. */
-    test_mark_and_find(&r, 150, 2, 2, -1);
-    test_mark_and_find(&r, 128, 0, 0, -1);
-    test_mark_and_find(&r, 200, 1, 3, -1);
-    test_mark_and_find(&r, 150, 2, 2, 0);
-    test_mark_and_find(&r, 200, 1, 3, 2);
+    test_mark_and_find(&r, 150, 2, 2, -1, 25, 4);
+    test_mark_and_find(&r, 128, 0, 0, -1, 25, 4);
+    test_mark_and_find(&r, 200, 1, 3, -1, 25, 4);
+    test_mark_and_find(&r, 150, 2, 2, 0, 25, 4);
+    test_mark_and_find(&r, 200, 1, 3, 2, 25, 4);
+    test_mark_and_find(&r, 160, 1, 1, -1, 150, 10);
     return check_report("test_occupancy");
 }

@@ -294,6 +294,7 @@ typedef struct neuv_pack_options {
                                 neuv_uv_tiles lists them); a chart larger than one tile at that density
                                 is refused (NEUV_ERR_INPUT); not with keep_scale. 0 (default): one
                                 square at the largest density that fits */
+    int threads;             /* 0: the machine's (the placements of each chart are searched side by side) */
 } neuv_pack_options;
 NEUV_API void neuv_pack_options_init(neuv_pack_options *o);
 

@@ -172,7 +172,7 @@ class Atlas:
         self._call(lib.neuv_atlas_parameterize, byref(o), progress=progress)
 
     def pack(self, *, progress=None, **options):
-        """Stage 3: packing into one square, metrics. Options: resolution, padding."""
+        """Stage 3: packing into one square, metrics. Options: resolution, padding, texels_per_unit, threads."""
         o = _options.make(_capi.PackOptions, options, _options.PACK, "Atlas.pack")
         self._call(lib.neuv_atlas_pack, byref(o), progress=progress)
 
@@ -370,7 +370,7 @@ def pack(V, F, uvs, *, return_report=False, **options):
     into as many resolution-sized UDIM tiles as that takes (uv_tiles lists
     them). uvs: (N, 2) per vertex or (M, 3, 2) per corner; the result has
     the same layout. Options: resolution, padding, keep_scale,
-    texels_per_unit. With return_report=True also {'charts', 'attempts',
+    texels_per_unit, threads. With return_report=True also {'charts', 'attempts',
     'texel_scale', 'tiles'}."""
     o = _options.make(_capi.PackOptions, options, _options.PACK_UVS, "neuv.pack")
     V, F, UV, per_corner, mesh = _uv_mesh(V, F, uvs)

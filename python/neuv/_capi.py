@@ -47,7 +47,8 @@ class ParamOptions(Structure):
 
 
 class PackOptions(Structure):
-    _fields_ = [("resolution", c_int), ("padding", c_int), ("keep_scale", c_int), ("texels_per_unit", c_double)]
+    _fields_ = [("resolution", c_int), ("padding", c_int), ("keep_scale", c_int), ("texels_per_unit", c_double),
+                ("threads", c_int)]
 
 
 class UnwrapOptions(Structure):

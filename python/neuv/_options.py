@@ -143,7 +143,7 @@ CONVERTERS = {
 CHART = ("preset", "charts", "max_distortion", "iters", "seed", "threads", "use_cache", "max_memory_mb", "seam_angle",
          "seam_edges", "hard_edges")
 PARAM = ("method", "preset", "iters", "refine", "seed", "threads", "allow_overlaps")
-PACK = ("resolution", "padding", "texels_per_unit")
+PACK = ("resolution", "padding", "texels_per_unit", "threads")
 PACK_UVS = PACK + ("keep_scale",)
 UNWRAP = tuple(dict.fromkeys(CHART + PARAM + PACK + ("train_faces",)))
 GENERATE = UNWRAP + ("keep_model",)

@@ -254,6 +254,7 @@ neuv_status neuv_atlas_pack(neuv_atlas *a, const neuv_pack_options *o)
     s = unwrap_result_clone(a->after_param, &r);
     if (s == NEUV_OK) {
         r->opts = u;
+        nn_set_threads(u.threads);
         unwrap_plan plan = {NULL, 0, 0, NULL};
         s = unwrap_stage_pack(r, &plan);
     }

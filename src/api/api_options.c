@@ -42,6 +42,7 @@ void neuv_pack_options_init(neuv_pack_options *o)
     memset(o, 0, sizeof *o);
     o->resolution = u.resolution;
     o->padding = u.padding;
+    o->threads = u.threads;
 }
 
 void neuv_apply_options_init(neuv_apply_options *o)
@@ -84,5 +85,6 @@ void api_options_set_pack(neuv_unwrap_options *u, const neuv_pack_options *o)
     u->resolution = o->resolution;
     u->padding = o->padding;
     u->texels_per_unit = o->texels_per_unit;
+    u->threads = o->threads;
 }
 

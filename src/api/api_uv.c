@@ -11,6 +11,7 @@
 #include "core/mem.h"
 #include "mesh/clean.h"
 #include "metrics/uv_metrics.h"
+#include "nn/nn.h"
 #include "metrics/uv_tiles.h"
 
 neuv_status neuv_evaluate(const neuv_mesh *mesh, const neuv_callbacks *cb, neuv_metrics *out)
@@ -73,6 +74,7 @@ neuv_status neuv_pack_uvs(neuv_mesh *m, const neuv_pack_options *o, const neuv_c
     atlas_pack_result res;
     log_scope scope;
     log_scope_open(&scope, cb);
+    nn_set_threads(o->threads);
     neuv_status s = atlas_pack(m, chart, nc, &po, NULL, &res);
     log_scope_close(&scope);
     mem_free(chart);

@@ -87,6 +87,7 @@ int occupancy_init(occupancy *o, int size, int border)
 int occupancy_init_levels(occupancy *o, int size, int border, int levels)
 {
     memset(o, 0, sizeof *o);
+    if (size < 1 || size > OCCUPANCY_MAX_SIZE) return -1;
     o->size = size;
     o->words = (size + 63) / 64;
     o->stride = o->words + 1;
@@ -172,35 +173,86 @@ static uint64_t placements_free(const occupancy *o, const footprint_spans *s, in
     return m;
 }
 
-/* 1 when every footprint row of s is at most as wide as the longest free run of its atlas row at y. */
-static int rows_may_fit(const occupancy *o, const footprint_spans *s, int y)
+/* -1 when every footprint row of s is at most as wide as the longest free
+ * run of its atlas row at y, else a footprint row that is not (widest rows
+ * first: they are the likeliest to fail). */
+static int row_too_wide(const occupancy *o, const footprint_spans *s, int y)
 {
     for (int t = 0; t < s->h; t++) {
         int r = s->row_order[t];
-        if (s->row_width[r] > o->free_run[y + r]) return 0;
+        if (s->row_width[r] > o->free_run[y + r]) return r;
     }
-    return 1;
+    return -1;
 }
+
+/* 1 when row_too_wide finds no row: the same test without the order and the
+ * early exit, a vector of rows at a time (where it passes, every row is
+ * tested anyway). */
+static int rows_all_fit(const occupancy *o, const footprint_spans *s, int y)
+{
+    const int *w = s->row_width, *f = o->free_run + y;
+    int bad = 0;
+#pragma omp simd reduction(| : bad)
+    for (int r = 0; r < s->h; r++) bad |= w[r] > f[r];
+    return !bad;
+}
+
+/* The next y above y where footprint row r's failure at y does not repeat:
+ * atlas row a = y + r has no free run as wide as row r, so a placement
+ * further up passes a only with a lower footprint row r' < r at most that
+ * wide (at y' = a - r'), or above it (a + 1). Each row stepped over is a
+ * placement skipped, so the walk costs no more than testing them. */
+static int next_row_past(const occupancy *o, const footprint_spans *s, int y, int r)
+{
+    int a = y + r, f = o->free_run[a];
+    for (int r2 = r - 1; r2 >= 0; r2--)
+        if (s->row_width[r2] <= f) return a - r2;
+    return a + 1;
+}
+
+#define FILTER_RECENT 4
 
 int occupancy_find(const occupancy *o, const footprint_spans *s, int y_end, int *ox, int *oy)
 {
     if (s->w > o->size || s->h > o->size) return 0;
     int ylast = o->size - s->h, xlast = o->size - s->w;
     if (y_end - s->h < ylast) ylast = y_end - s->h;
-    int lead = s->h > 0 ? s->row_order[0] : 0;
-    for (int y = o->first_open; y <= ylast; y++) {
+    if (s->h == 0) { *ox = 0; *oy = o->first_open; return o->first_open <= ylast; }
+    /* Per 64 placements, the atlas row that last ruled them all out: one
+     * row up, the footprint row next below meets it, and the shape's rows
+     * change little from one to the next, so it is tested first. */
+    int lead_at[OCCUPANCY_MAX_SIZE / 64];
+    for (int b = 0; b <= xlast / 64; b++) lead_at[b] = -1;
+    /* The atlas rows that last failed the row test: crowded rows fail again. */
+    int recent[FILTER_RECENT], next_recent = 0;
+    for (int i = 0; i < FILTER_RECENT; i++) recent[i] = -1;
+    for (int y = o->first_open; y <= ylast;) {
         /* Cheap rejection: some footprint row is wider than any free run of its
-         * atlas row (widest rows first: they are the likeliest to fail). */
-        if (!rows_may_fit(o, s, y)) continue;
+         * atlas row; the placements that would meet the same row are skipped. */
+        int r = -1;
+        for (int i = 0; i < FILTER_RECENT && r < 0; i++) {
+            int rr = recent[i] - y;
+            if (rr >= 0 && rr < s->h && s->row_width[rr] > o->free_run[recent[i]]) r = rr;
+        }
+        if (r < 0 && !rows_all_fit(o, s, y)) {
+            r = row_too_wide(o, s, y);
+            recent[next_recent] = y + r;
+            next_recent = (next_recent + 1) % FILTER_RECENT;
+        }
+        if (r >= 0) { y = next_row_past(o, s, y, r); continue; }
         /* 64 placements at a time, left to right: the first free one is the
          * leftmost. Each span rules out its blocked placements in two reads
          * (run_blocked), where jumping over the taken pixels one by one took a
          * hundred and more per row on a crowded atlas. */
-        for (int x0 = 0; x0 <= xlast; x0 += 64) {
+        for (int x0 = 0, b = 0; x0 <= xlast; x0 += 64, b++) {
             uint64_t m = xlast - x0 >= 63 ? ~(uint64_t)0 : ((uint64_t)1 << (xlast - x0 + 1)) - 1;
+            int lead = lead_at[b] - y;
+            if (lead < 0 || lead >= s->h) lead = s->row_order[0];
             m = placements_free(o, s, y, x0, m, &lead);
             if (m) { *ox = x0 + __builtin_ctzll(m); *oy = y; return 1; }
+            lead_at[b] = lead + y;
         }
+        y++;
     }
     return 0;
 }
@@ -218,7 +270,7 @@ int occupancy_find_nearest(const occupancy *o, const footprint_spans *s, int x0,
         if (y0 - d < 0 && y0 + d > ylast) break;
         for (int side = 0; side < (d ? 2 : 1); side++) {
             int y = side ? y0 + d : y0 - d;
-            if (y < 0 || y > ylast || !rows_may_fit(o, s, y)) continue;
+            if (y < 0 || y > ylast || !rows_all_fit(o, s, y)) continue;
             for (int xb = 0; xb <= xlast; xb += 64) {
                 uint64_t m = xlast - xb >= 63 ? ~(uint64_t)0 : ((uint64_t)1 << (xlast - xb + 1)) - 1;
                 m = placements_free(o, s, y, xb, m, &lead);

@@ -25,9 +25,13 @@ typedef struct occupancy {
  * tested against 64 positions with two reads. */
 #define OCCUPANCY_LEVELS 6
 
+/* Largest side (the packer's resolution limit). */
+#define OCCUPANCY_MAX_SIZE 32768
+
 /* An empty atlas whose outer `border` pixels are already taken (so that
  * charts keep the padding to the edge), keeping as many blocked-run levels
- * as fit a 64 MiB budget. Returns 0, or -1 on allocation failure. */
+ * as fit a 64 MiB budget. Returns 0, or -1 on allocation failure or a size
+ * outside 1..OCCUPANCY_MAX_SIZE. */
 int occupancy_init(occupancy *o, int size, int border);
 /* The same with `levels` (0..OCCUPANCY_LEVELS) blocked-run levels: fewer
  * levels save memory and make wide spans slower to test, never different. */

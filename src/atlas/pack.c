@@ -1,6 +1,7 @@
 #include "atlas/pack.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -193,6 +194,54 @@ static void pack_cache_reset(pack_cache *pc, double g)
     pc->g = g;
 }
 
+/* One way to place a chart: its shape at extra turn j in quarter turn k,
+ * and the lowest place found for it (found = 0: none under the bound). */
+typedef struct place_candidate {
+    const turn_shape *t;
+    int j, k;
+    int found, x, y, value; /* value: the top edge (choose_lowest_top) or the bottom row */
+} place_candidate;
+
+/* Finds every candidate's lowest place, side by side on the OpenMP
+ * threads. Each is searched only below the best value found so far (ties
+ * included): that drops only candidates that lose, so the winner
+ * (candidate_best) is the one an unbounded search of every candidate gives,
+ * whatever the threads and the order their searches end in. Nothing here
+ * allocates, so a failed allocation stops the packer at the same point on
+ * any number of threads. */
+static void candidates_search(const occupancy *occ, int choose, place_candidate *cand, int n)
+{
+    int bound = choose == choose_lowest_top ? occ->size + 1 : occ->size;
+#pragma omp parallel for schedule(dynamic, 1) if (n > 1 && omp_get_max_threads() > 1)
+    for (int i = 0; i < n; i++) {
+        place_candidate *c = &cand[i];
+        const footprint_spans *sp = &c->t->sp[c->k];
+        int b;
+#pragma omp atomic read
+        b = bound;
+        c->found = occupancy_find(occ, sp, choose == choose_lowest_top ? b : b + sp->h, &c->x, &c->y);
+        if (!c->found) continue;
+        c->value = choose == choose_lowest_top ? c->y + sp->h : c->y;
+#pragma omp critical(pack_candidate_bound)
+        {
+            if (c->value < bound) bound = c->value;
+        }
+    }
+}
+
+/* The winner: lowest value, then leftmost, then first in the list (-1: none found). */
+static int candidate_best(const place_candidate *cand, int n)
+{
+    int best = -1;
+    for (int i = 0; i < n; i++) {
+        const place_candidate *c = &cand[i];
+        if (c->found && (best < 0 || c->value < cand[best].value ||
+                         (c->value == cand[best].value && c->x < cand[best].x)))
+            best = i;
+    }
+    return best;
+}
+
 /* One packing at global scale g (pixels per world unit). Returns 1 when all
  * charts fit (pl filled), 0 when one does not (*frac_placed: share of the
  * charts' box area placed so far), -1 on allocation failure. Charts in
@@ -211,21 +260,17 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
         const chart_info *c = &P->ch[i];
         if (c->f_end > c->f_begin && !(P->done && P->done[i])) total += (g * c->W + 1) * (g * c->H + 1);
     }
-    int rc = 1;
-    turn_shape scratch;
-    /* The winning spans: a cache entry's, or taken over from a shape made
-     * over the budget. */
-    const footprint_spans *best_sp = NULL;
-    footprint_spans best_own;
-    memset(&scratch, 0, sizeof scratch);
-    memset(&best_own, 0, sizeof best_own);
-    int missed = 0;
+    int rc = 1, missed = 0;
+    /* Shapes made over the cache's budget live here until the chart is placed. */
+    turn_shape scratch[pack_turns_max + 1];
+    place_candidate cand[4 * (pack_turns_max + 1)];
+    memset(scratch, 0, sizeof scratch);
     for (int n = 0; n < P->ncharts && rc == 1; n++) {
         int ci = P->sorted[hs->order][n];
         const chart_info *c = &P->ch[ci];
         if (c->f_end == c->f_begin || (P->done && P->done[ci])) continue;
-        int best_k = -1, best_j = 0, bx = 0, by = 0, best_top = R + 1, bw = 0, bh = 0;
-        for (int j = 0; j <= pack_turns_max && rc == 1; j++) {
+        int ncand = 0;
+        for (int j = 0; j <= pack_turns_max; j++) {
             /* Turn j is one of this heuristic's turns, or the smallest square's turn when it is
              * new and either this heuristic tries free turns or the chart fits no other way. */
             if (j < pack_turns_max ? j % (pack_turns_max / hs->turns) != 0
@@ -235,55 +280,32 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
             if (!t->state) {
                 if (turn_shape_make(P, c, j, g, q, t) != 0) { turn_shape_clear(t); rc = -1; break; }
                 if (pc->bytes + t->bytes > pc->budget) { /* over budget: use it now, keep nothing */
-                    scratch = *t;
+                    scratch[j] = *t;
                     memset(t, 0, sizeof *t);
-                    t = &scratch;
+                    t = &scratch[j];
                 } else {
                     pc->bytes += t->bytes;
                 }
             }
-            if (t->state == 2) { if (t == &scratch) turn_shape_clear(&scratch); continue; }
-            int won = -1;
-            for (int k = 0; k < 4; k++) {
-                if (!t->have[k]) continue;
-                int x, y;
-                if (hs->choose == choose_lowest_top) {
-                    /* Lowest top edge wins (keeps the filled part of the square low), then leftmost. */
-                    if (occupancy_find(&occ, &t->sp[k], best_top, &x, &y)) {
-                        int top = y + t->fp[k].h;
-                        if (top < best_top || (top == best_top && x < bx)) {
-                            best_top = top; won = k; bx = x; by = y;
-                        }
-                    }
-                } else if (occupancy_find(&occ, &t->sp[k], best_k < 0 && won < 0 ? R + 1 : by + t->fp[k].h + 1, &x, &y)) {
-                    /* Lowest bottom edge wins, then leftmost. */
-                    if ((best_k < 0 && won < 0) || y < by || (y == by && x < bx)) { won = k; bx = x; by = y; }
-                }
+            if (t->state != 1) continue;
+            for (int k = 0; k < 4; k++)
+                if (t->have[k]) cand[ncand++] = (place_candidate){.t = t, .j = j, .k = k};
+        }
+        if (rc == 1) {
+            candidates_search(&occ, hs->choose, cand, ncand);
+            int b = candidate_best(cand, ncand);
+            if (b < 0) {
+                if (P->allow_miss) { pl[ci].k = -1; missed = 1; }
+                else rc = 0;
+            } else {
+                const place_candidate *w = &cand[b];
+                occupancy_mark(&occ, &w->t->sp[w->k], w->x, w->y, pad);
+                pl[ci] = (placement){.x = w->x, .y = w->y, .k = w->k, .w = w->t->w, .h = w->t->h, .j = w->j};
+                placed += (g * c->W + 1) * (g * c->H + 1);
             }
-            if (won >= 0) {
-                best_k = won; best_j = j; bw = t->w; bh = t->h;
-                footprint_spans_free(&best_own);
-                if (t == &scratch) {
-                    best_own = scratch.sp[won];
-                    memset(&scratch.sp[won], 0, sizeof scratch.sp[won]);
-                    best_sp = &best_own;
-                } else {
-                    best_sp = &t->sp[won];
-                }
-            }
-            if (t == &scratch) turn_shape_clear(&scratch);
         }
-        if (rc == 1 && best_k < 0) {
-            if (P->allow_miss) { pl[ci].k = -1; missed = 1; }
-            else rc = 0;
-        }
-        if (rc == 1 && best_k >= 0) {
-            occupancy_mark(&occ, best_sp, bx, by, pad);
-            pl[ci].x = bx; pl[ci].y = by; pl[ci].k = best_k; pl[ci].w = bw; pl[ci].h = bh; pl[ci].j = best_j;
-            placed += (g * c->W + 1) * (g * c->H + 1);
-        }
-        footprint_spans_free(&best_own);
-        best_sp = NULL;
+        for (int j = 0; j <= pack_turns_max; j++)
+            if (scratch[j].state) turn_shape_clear(&scratch[j]);
     }
     occupancy_free(&occ);
     mem_free(q);

@@ -41,6 +41,7 @@ int cmd_pack(int argc, char **argv)
         in = argv[i];
     }
     if (bad) return 2;
+    opt.threads = cli_opts.threads;
     if (!in || !out) return cli_error(NULL, "%s", pack_usage);
     if (opt.resolution < 8 || opt.resolution > 32768)
         return cli_error(NULL, "--resolution must be between 8 and 32768 px, got %d", opt.resolution);
