@@ -24,6 +24,13 @@ after=$(awk '/packing efficiency after/ {print $4}' "$TMP/out.txt")
 check "efficiency printed" "[ -n '$after' ]"
 check "efficiency not below the file's own" "awk -v a='$after' -v b='$before' 'BEGIN { exit !(a >= b) }'"
 
+# The packing's threads search each chart's places side by side: the same bytes on one and on two.
+"$NEUV" pack "$IN" -o "$TMP/t1.obj" --threads 1 --resolution 512 > /dev/null 2>&1
+"$NEUV" pack "$IN" -o "$TMP/t2.obj" --threads 2 --resolution 512 > /dev/null 2>&1
+check "same bytes on 1 and 2 threads" "[ -s '$TMP/t1.obj' ] && cmp -s '$TMP/t1.obj' '$TMP/t2.obj'"
+"$NEUV" pack "$IN" -o "$TMP/x.obj" --threads 0 > /dev/null 2> "$TMP/err.txt"
+check "--threads 0 exits 2" "[ \$? -eq 2 ] && grep -q 'neuv: error' '$TMP/err.txt'"
+
 "$NEUV" pack "$TMP/spot-packed.obj" -o "$TMP/again.obj" --resolution 512 --padding 4 --keep-scale > /dev/null 2>&1
 check "repacking a packed file works" "[ \$? -eq 0 ] && [ -s '$TMP/again.obj' ]"
 "$NEUV" pack "$IN" -o "$TMP/x.obj" --padding 9999 > /dev/null 2> "$TMP/err.txt"

@@ -135,6 +135,9 @@ def test_pack_and_evaluate(mesh, unwrapped):
     assert pack_report["charts"] == report["charts"] and pack_report["attempts"] >= 1
     after = neuv.evaluate(Vo, indices, packed)
     assert after["charts"] == report["charts"] and after["qce_mean"] == pytest.approx(metrics["qce_mean"], rel=1e-6)
+    # The packing's threads change nothing in the result.
+    np.testing.assert_array_equal(neuv.pack(Vo, indices, moved, resolution=256, threads=1),
+                                  neuv.pack(Vo, indices, moved, resolution=256, threads=2))
     corners = neuv.pack(V, F, moved[indices], resolution=256)
     assert corners.shape == (len(F), 3, 2)
     np.testing.assert_allclose(corners, packed[indices], rtol=0, atol=1e-12)
