@@ -11,9 +11,14 @@
 
 static uv_metrics measure(const neuv_mesh *m)
 {
-    uv_metrics mt;
+    uv_metrics mt, light;
     neuv_status st = uv_metrics_compute(m, &mt);
     CHECK_INT(st, NEUV_OK);
+    /* Without the overlap raster: overlap NaN, every other figure to the bit. */
+    CHECK_INT(uv_metrics_compute_no_overlap(m, &light), NEUV_OK);
+    CHECK(isnan(light.overlap_fraction));
+    light.overlap_fraction = mt.overlap_fraction;
+    CHECK(memcmp(&light, &mt, sizeof mt) == 0);
     return mt;
 }
 

@@ -225,10 +225,12 @@ static neuv_status distortion_metrics(int nf, const face_measure *fm, const unsi
     return NEUV_OK;
 }
 
-neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
+/* with_overlap 0: overlap_fraction is left NaN (no raster drawn). */
+static neuv_status metrics_compute(const neuv_mesh *m, int with_overlap, uv_metrics *out)
 {
     memset(out, 0, sizeof *out);
     metrics_set_nan(out);
+    if (!with_overlap) out->overlap_fraction = NAN;
     if (!m || m->nuv <= 0 || !m->uv || !m->tri_uv)
         return error_set(NEUV_ERR_INPUT, "the mesh carries no texture coordinates");
     if (m->nf == 0) return NEUV_OK;
@@ -294,13 +296,15 @@ neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out)
         if (measured[f]) out->flipped += (fm[f].area_uv > 0) != (vote[chart[f]] >= 0);
     mem_free(vote);
 
-    uv_coverage cov;
-    double t0 = now_seconds();
-    st = uv_coverage_count(sub.uv, nvalid, sub.tri_uv, measured, UV_METRICS_RASTER, &cov);
-    if (st != NEUV_OK) goto done;
-    log_message(NEUV_LOG_DEBUG, "overlap raster: %d faces, %lld pixels covered, %lld twice, %.3f s",
-             nvalid - out->degenerate_uv, cov.covered, cov.overlapped, now_seconds() - t0);
-    out->overlap_fraction = uv_coverage_overlap_fraction(&cov);
+    if (with_overlap) {
+        uv_coverage cov;
+        double t0 = now_seconds();
+        st = uv_coverage_count(sub.uv, nvalid, sub.tri_uv, measured, UV_METRICS_RASTER, &cov);
+        if (st != NEUV_OK) goto done;
+        log_message(NEUV_LOG_DEBUG, "overlap raster: %d faces, %lld pixels covered, %lld twice, %.3f s",
+                    nvalid - out->degenerate_uv, cov.covered, cov.overlapped, now_seconds() - t0);
+        out->overlap_fraction = uv_coverage_overlap_fraction(&cov);
+    }
 
     int inside = 1;
     for (size_t c = 0; c < 3 * (size_t)nvalid && inside; c++) {
@@ -322,6 +326,10 @@ done:
     mem_free(chart);
     return st;
 }
+
+neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out) { return metrics_compute(m, 1, out); }
+
+neuv_status uv_metrics_compute_no_overlap(const neuv_mesh *m, uv_metrics *out) { return metrics_compute(m, 0, out); }
 
 void uv_metrics_write_json(const uv_metrics *mt, json_writer *w)
 {

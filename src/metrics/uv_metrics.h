@@ -31,6 +31,9 @@ typedef struct uv_metrics {
  * Outputs: out; metrics with no face to measure are NaN.
  * Returns NEUV_OK, NEUV_ERR_INPUT when m has no UVs, or NEUV_ERR_NOMEM. */
 neuv_status uv_metrics_compute(const neuv_mesh *m, uv_metrics *out);
+/* The same without the overlap raster (a 2048 px coverage count):
+ * overlap_fraction is NaN, every other metric is uv_metrics_compute's. */
+neuv_status uv_metrics_compute_no_overlap(const neuv_mesh *m, uv_metrics *out);
 /* Writes the metrics as the members of the current JSON object. */
 void uv_metrics_write_json(const uv_metrics *mt, json_writer *w);
 

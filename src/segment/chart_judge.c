@@ -58,7 +58,7 @@ neuv_status chart_lscm_judge(const neuv_mesh *m, const int *face_chart, int id, 
          * then cuts it smaller. */
         st = mesh_set_uv(sub, sub->nv, uv, sub->tri);
         uv_metrics mt;
-        if (!st) st = uv_metrics_compute(sub, &mt);
+        if (!st) st = uv_metrics_compute_no_overlap(sub, &mt); /* only qce and flips are judged */
         if (!st) {
             *qce_mean = isfinite(mt.qce_mean) ? mt.qce_mean : INFINITY;
             *flipped = mt.flipped + mt.degenerate_uv;
