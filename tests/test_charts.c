@@ -3,6 +3,7 @@
 #include "check.h"
 
 #include "charts/charts.h"
+#include "charts/face_graph.h"
 #include "core/error.h"
 #include "core/rng.h"
 #include "core/timer.h"
@@ -607,8 +608,63 @@ static void test_keep_polygons(void)
     mesh_free(m);
 }
 
+/* face_graph_build's adjacency against pairing every half-edge with every
+ * other: faces join across an edge with exactly two half-edges of two
+ * faces. The mesh mixes a grid, a fan of 60 faces round one vertex (the
+ * sort's long bucket), an edge shared by three faces, and a face with a
+ * repeated vertex, with faces in a shuffled order. */
+static void test_face_graph(void)
+{
+    neuv_mesh *grid = shape_grid(6, 5, 1, 1, 0);
+    const int fan = 60, extra = 3 + 1;
+    int nv = grid->nv + 1 + fan + 2, nf = grid->nf + fan + extra;
+    neuv_mesh *m = mesh_create(nv, nf, 0);
+    memcpy(m->pos, grid->pos, sizeof(double) * 3 * (size_t)grid->nv);
+    int *tri = malloc(sizeof(int) * 3 * (size_t)nf), t = 0;
+    for (int f = 0; f < grid->nf; f++, t++) memcpy(tri + 3 * t, grid->tri + 3 * f, 3 * sizeof(int));
+    int c = grid->nv; /* the fan's centre, then its rim */
+    m->pos[3 * c] = 3; m->pos[3 * c + 1] = 0; m->pos[3 * c + 2] = 0;
+    for (int i = 0; i < fan; i++) {
+        double a = 2 * 3.14159265358979 * i / fan;
+        m->pos[3 * (c + 1 + i)] = 3 + cos(a); m->pos[3 * (c + 1 + i) + 1] = sin(a); m->pos[3 * (c + 1 + i) + 2] = 0;
+        int tr[3] = {c, c + 1 + i, c + 1 + (i + 1) % fan};
+        memcpy(tri + 3 * t++, tr, sizeof tr);
+    }
+    int p = c + 1 + fan; /* two more points: three faces on the grid's edge (0, 1) */
+    m->pos[3 * p + 2] = 1; m->pos[3 * (p + 1) + 2] = -1;
+    int more[4][3] = {{0, 1, p}, {1, 0, p + 1}, {0, p, p + 1}, {2, 2, 3}};
+    for (int i = 0; i < extra; i++) memcpy(tri + 3 * t++, more[i], sizeof more[i]);
+    rng r;
+    rng_seed(&r, 11);
+    for (int i = nf - 1; i > 0; i--) {
+        int j = (int)(rng_uniform(&r) * (i + 1));
+        for (int k = 0; k < 3; k++) { int x = tri[3 * i + k]; tri[3 * i + k] = tri[3 * j + k]; tri[3 * j + k] = x; }
+    }
+    memcpy(m->tri, tri, sizeof(int) * 3 * (size_t)nf);
+    face_graph g;
+    CHECK_INT(face_graph_build(m, &g), NEUV_OK);
+    int bad = 0, joined = 0;
+    for (int h = 0; h < 3 * nf; h++) {
+        int a = tri[h], b = tri[3 * (h / 3) + (h % 3 + 1) % 3], count = 0, other = -1;
+        for (int h2 = 0; h2 < 3 * nf; h2++) {
+            int a2 = tri[h2], b2 = tri[3 * (h2 / 3) + (h2 % 3 + 1) % 3];
+            if ((a2 == a && b2 == b) || (a2 == b && b2 == a)) { count++; if (h2 != h) other = h2; }
+        }
+        int want = a != b && count == 2 && other / 3 != h / 3 ? other / 3 : -1;
+        bad += g.adj[h] != want;
+        joined += want >= 0;
+    }
+    CHECK_INT(bad, 0);
+    CHECK(joined > 2 * (grid->nf + fan)); /* the grid's and the fan's inner edges */
+    face_graph_free(&g);
+    free(tri);
+    mesh_free(m);
+    mesh_free(grid);
+}
+
 int main(void)
 {
+    test_face_graph();
     test_cube_sides();
     test_split_long_axis();
     test_smooth_boundaries();
