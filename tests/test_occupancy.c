@@ -49,11 +49,12 @@ static void random_footprint(rng *r, int w, int h, footprint *f)
 
 static void test_rotate_and_spans(rng *r)
 {
-    int bad_rot = 0, bad_spans = 0;
+    int bad_rot = 0, bad_spans = 0, bad_half = 0, symmetric = 0;
     for (int trial = 0; trial < 40; trial++) {
         footprint f;
         int w = 1 + (int)(rng_uniform(r) * 90), h = 1 + (int)(rng_uniform(r) * 70);
         random_footprint_uncropped(r, w, h, &f); /* empty border rows and columns too */
+        if (trial < 2) memset(f.bits, 1, (size_t)w * h); /* a full box: its own half turn */
         for (int k = 0; k < 4; k++) {
             footprint g;
             CHECK(footprint_rotate(&f, k, &g) == 0);
@@ -84,11 +85,29 @@ static void test_rotate_and_spans(rng *r)
         }
         CHECK_INT(covered, footprint_count(&f));
         for (int t = 1; t < h; t++) bad_spans += s.row_width[s.row_order[t - 1]] < s.row_width[s.row_order[t]];
+        /* The half turn from the spans: every array as the turned bitmap's spans have it. */
+        footprint r2;
+        footprint_spans want, got;
+        CHECK(footprint_rotate(&f, 2, &r2) == 0 && footprint_to_spans(&r2, &want) == 0);
+        CHECK(footprint_spans_half_turn(&s, &got) == 0);
+        int n = want.count;
+        bad_half += got.w != want.w || got.h != want.h || got.count != n ||
+                    memcmp(got.row_first, want.row_first, sizeof(int) * (size_t)(h + 1)) ||
+                    memcmp(got.x0, want.x0, sizeof(int) * (size_t)n) || memcmp(got.x1, want.x1, sizeof(int) * (size_t)n) ||
+                    memcmp(got.row_width, want.row_width, sizeof(int) * (size_t)h) ||
+                    memcmp(got.row_order, want.row_order, sizeof(int) * (size_t)h);
+        bad_half += footprint_spans_equal(&got, &s) != footprint_equal(&r2, &f);
+        symmetric += footprint_equal(&r2, &f);
+        footprint_spans_free(&want);
+        footprint_spans_free(&got);
+        footprint_free(&r2);
         footprint_spans_free(&s);
         free(f.bits);
     }
     CHECK_INT(bad_rot, 0);
     CHECK_INT(bad_spans, 0);
+    CHECK_INT(bad_half, 0);
+    CHECK(symmetric >= 1); /* a footprint its own half turn was met (the one-pixel ones at least) */
 }
 
 /* Longest run of free pixels of row y, pixel by pixel. */

@@ -128,6 +128,23 @@ static int spans_push(footprint_spans *s, int *cap, int a, int b)
     return 0;
 }
 
+/* row_order from row_width: wide rows first (a blocked wide span lets the
+ * search jump far), ties by row, by a counting sort. Returns 0 or -1. */
+static int spans_order_rows(footprint_spans *s)
+{
+    s->row_order = mem_alloc(sizeof(int) * (size_t)(s->h > 0 ? s->h : 1));
+    if (!s->row_order) return -1;
+    int maxw = 0;
+    for (int j = 0; j < s->h; j++) if (s->row_width[j] > maxw) maxw = s->row_width[j];
+    int *count = mem_calloc((size_t)maxw + 2, sizeof *count);
+    if (!count) return -1;
+    for (int j = 0; j < s->h; j++) count[maxw - s->row_width[j] + 1]++;
+    for (int k = 1; k <= maxw + 1; k++) count[k] += count[k - 1];
+    for (int j = 0; j < s->h; j++) s->row_order[count[maxw - s->row_width[j]]++] = j;
+    mem_free(count);
+    return 0;
+}
+
 int footprint_to_spans(const footprint *in, footprint_spans *out)
 {
     memset(out, 0, sizeof *out);
@@ -152,18 +169,41 @@ int footprint_to_spans(const footprint *in, footprint_spans *out)
         }
     }
     out->row_first[in->h] = out->count;
-    /* Wide rows first: a blocked wide span lets the search jump far. */
-    out->row_order = mem_alloc(sizeof(int) * (size_t)(in->h > 0 ? in->h : 1));
-    if (!out->row_order) { footprint_spans_free(out); return -1; }
-    int maxw = 0;
-    for (int j = 0; j < in->h; j++) if (out->row_width[j] > maxw) maxw = out->row_width[j];
-    int *count = mem_calloc((size_t)maxw + 2, sizeof *count);
-    if (!count) { footprint_spans_free(out); return -1; }
-    for (int j = 0; j < in->h; j++) count[maxw - out->row_width[j] + 1]++;
-    for (int k = 1; k <= maxw + 1; k++) count[k] += count[k - 1];
-    for (int j = 0; j < in->h; j++) out->row_order[count[maxw - out->row_width[j]]++] = j;
-    mem_free(count);
+    if (spans_order_rows(out) != 0) { footprint_spans_free(out); return -1; }
     return 0;
+}
+
+int footprint_spans_half_turn(const footprint_spans *in, footprint_spans *out)
+{
+    memset(out, 0, sizeof *out);
+    const int w = in->w, h = in->h, n = in->count;
+    out->w = w; out->h = h; out->count = n;
+    out->row_first = mem_alloc(sizeof(int) * (size_t)(h + 1));
+    out->row_width = mem_alloc(sizeof(int) * (size_t)(h > 0 ? h : 1));
+    out->x0 = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    out->x1 = mem_alloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    if (!out->row_first || !out->row_width || !out->x0 || !out->x1) { footprint_spans_free(out); return -1; }
+    /* Pixel (i, j) goes to (w-1-i, h-1-j): rows in reverse, each row's runs mirrored and in reverse. */
+    int at = 0;
+    for (int j = 0; j < h; j++) {
+        int src = h - 1 - j;
+        out->row_first[j] = at;
+        out->row_width[j] = in->row_width[src];
+        for (int k = in->row_first[src + 1] - 1; k >= in->row_first[src]; k--, at++) {
+            out->x0[at] = w - 1 - in->x1[k];
+            out->x1[at] = w - 1 - in->x0[k];
+        }
+    }
+    out->row_first[h] = at;
+    if (spans_order_rows(out) != 0) { footprint_spans_free(out); return -1; }
+    return 0;
+}
+
+int footprint_spans_equal(const footprint_spans *a, const footprint_spans *b)
+{
+    return a->w == b->w && a->h == b->h && a->count == b->count &&
+           !memcmp(a->row_first, b->row_first, sizeof(int) * (size_t)(a->h + 1)) &&
+           !memcmp(a->x0, b->x0, sizeof(int) * (size_t)a->count) && !memcmp(a->x1, b->x1, sizeof(int) * (size_t)a->count);
 }
 
 long footprint_count(const footprint *in)

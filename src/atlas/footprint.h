@@ -31,6 +31,12 @@ int footprint_rasterize(const double *p, const int *tri, int ntri, int w, int h,
 int footprint_rotate(const footprint *in, int k, footprint *out);
 /* Covered pixels as runs per row. Returns 0, or -1 on allocation failure. */
 int footprint_to_spans(const footprint *in, footprint_spans *out);
+/* The spans of `in` turned by a half turn, as footprint_to_spans gives them
+ * for footprint_rotate(.., 2, ..), without the bitmap. Returns 0, or -1 on
+ * allocation failure. */
+int footprint_spans_half_turn(const footprint_spans *in, footprint_spans *out);
+/* 1 when a and b cover the same pixels in boxes of the same size. */
+int footprint_spans_equal(const footprint_spans *a, const footprint_spans *b);
 /* Number of covered pixels. */
 long footprint_count(const footprint *in);
 int footprint_equal(const footprint *a, const footprint *b);

@@ -137,20 +137,19 @@ static void chart_oriented(const pack_ctx *P, const chart_info *c, int j, double
 }
 
 /* A chart's footprint at one extra turn and the current scale, in its four
- * quarter turns, with their spans. Every heuristic tried at a scale places
- * the same shapes, so they are made once per scale (pack_cache). */
+ * quarter turns, as spans. Every heuristic tried at a scale places the same
+ * shapes, so they are made once per scale (pack_cache). */
 typedef struct turn_shape {
     int state;              /* 0: not made yet, 1: made, 2: does not fit the atlas at this turn */
     int w, h;               /* pixel box before the quarter turns */
     int have[4];            /* quarter turn k is distinct (a half turn can repeat the shape) */
-    footprint fp[4];
     footprint_spans sp[4];
     size_t bytes;
 } turn_shape;
 
 static void turn_shape_clear(turn_shape *t)
 {
-    for (int k = 0; k < 4; k++) { footprint_free(&t->fp[k]); footprint_spans_free(&t->sp[k]); }
+    for (int k = 0; k < 4; k++) footprint_spans_free(&t->sp[k]);
     memset(t, 0, sizeof *t);
 }
 
@@ -161,17 +160,25 @@ static int turn_shape_make(const pack_ctx *P, const chart_info *c, int j, double
     double mx, my;
     chart_oriented(P, c, j, g, q, &t->w, &t->h, &mx, &my);
     if ((t->w > R - 2 * pad && t->h > R - 2 * pad) || t->w > R || t->h > R) { t->state = 2; return 0; }
-    if (footprint_rasterize(q, P->ltri + 3 * (size_t)c->f_begin, c->f_end - c->f_begin, t->w, t->h, &t->fp[0]) != 0)
+    /* The bitmap and its quarter turn; the half turns of both come from
+     * their spans, which is all the placements read. */
+    footprint fp0, fp1;
+    memset(&fp1, 0, sizeof fp1);
+    if (footprint_rasterize(q, P->ltri + 3 * (size_t)c->f_begin, c->f_end - c->f_begin, t->w, t->h, &fp0) != 0)
         return -1;
-    t->have[0] = 1;
-    for (int k = 1; k < 4; k++) {
-        if (footprint_rotate(&t->fp[0], k, &t->fp[k]) != 0) return -1;
-        /* A half turn that maps the footprint onto itself finds the same places. */
-        t->have[k] = !(k >= 2 && footprint_equal(&t->fp[k], &t->fp[k - 2]));
-    }
+    int rc = footprint_to_spans(&fp0, &t->sp[0]) != 0 || footprint_rotate(&fp0, 1, &fp1) != 0 ||
+             footprint_to_spans(&fp1, &t->sp[1]) != 0 ? -1 : 0;
+    footprint_free(&fp0);
+    footprint_free(&fp1);
+    if (rc) return -1;
     for (int k = 0; k < 4; k++) {
-        if (t->have[k] && footprint_to_spans(&t->fp[k], &t->sp[k]) != 0) return -1;
-        t->bytes += (size_t)t->fp[k].w * t->fp[k].h + (t->have[k] ? (size_t)t->sp[k].count * 8 + (size_t)t->fp[k].h * 16 : 0);
+        if (k >= 2) {
+            if (footprint_spans_half_turn(&t->sp[k - 2], &t->sp[k]) != 0) return -1;
+            /* A half turn that maps the footprint onto itself finds the same places. */
+            if (footprint_spans_equal(&t->sp[k], &t->sp[k - 2])) footprint_spans_free(&t->sp[k]);
+        }
+        t->have[k] = t->sp[k].row_first != NULL;
+        if (t->have[k]) t->bytes += (size_t)t->sp[k].count * 8 + (size_t)t->sp[k].h * 16;
     }
     t->state = 1;
     return 0;
