@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <omp.h>
+
 #include "neuv/neuv.h"
 #include "check.h"
 
@@ -685,8 +687,23 @@ static void test_output_mesh(void)
     neuv_mesh_free(in);
 }
 
+/* neuv_set_threads sets the calling thread's OpenMP threads; below 1 it changes nothing. */
+static void test_set_threads(void)
+{
+    int before = omp_get_max_threads();
+    neuv_set_threads(1);
+    CHECK_INT(omp_get_max_threads(), 1);
+    neuv_set_threads(0);
+    neuv_set_threads(-3);
+    CHECK_INT(omp_get_max_threads(), 1);
+    neuv_set_threads(3);
+    CHECK_INT(omp_get_max_threads(), 3);
+    neuv_set_threads(before);
+}
+
 int main(void)
 {
+    test_set_threads();
     test_mesh_from_arrays();
     test_stages_and_generate();
     test_two_meshes();

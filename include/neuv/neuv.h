@@ -55,7 +55,8 @@
  * Threads: objects are independent; two threads may each use their own
  * atlas (or model) at the same time, with the same results as one after the
  * other. One object must not be used by two threads at once. Each call may
- * use several threads itself (OpenMP; `threads` in the options).
+ * use several threads itself (OpenMP; `threads` in the options, or
+ * neuv_set_threads for the calls whose options have no such field).
  *
  * Determinism: same input, options, seed and thread count give the same
  * output bytes on one machine. The report's seconds are timings.
@@ -100,6 +101,10 @@ NEUV_API const char *neuv_version(void);
 /* Releases a string or array the library returned by pointer, with the
  * allocator it was made with (NULL: nothing). */
 NEUV_API void neuv_free(void *ptr);
+/* The OpenMP threads of the calling thread's later calls (OpenMP keeps the
+ * count per thread); threads < 1 changes nothing. Options with a `threads`
+ * field set it again for their call. */
+NEUV_API void neuv_set_threads(int threads);
 
 /* ---- callbacks ---------------------------------------------------------- */
 

@@ -164,6 +164,8 @@ int cli_arg_global(int argc, char **argv, int *i, int *bad)
             cli_error(NULL, "--threads must be at least 1");
             *bad = 1;
         }
+        /* Every library call of the command, those whose options carry no threads too (compare, remesh). */
+        if (!*bad) neuv_set_threads(cli_opts.threads);
         return 1;
     }
     return 0;
