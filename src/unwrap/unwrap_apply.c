@@ -530,15 +530,15 @@ static int relax_folds(chart_piece *p, double *scratch)
  * model put it; a smaller weight unfolds harder folds. */
 static const double reflatten_anchor_lambda[] = {10.0, 1.0, 0.1};
 
-/* Flattens a piece again: LSCM anchored to target, then (aligned) plain
- * LSCM and harmonic aligned to target by a similarity. Returns 1 when the result is
- * usable, 0 when not, -1 on no memory; a flattening error (not a disk)
- * counts as unusable. */
+/* Flattens a piece again: LSCM anchored to target (aligned 0), or plain
+ * LSCM and harmonic placed onto target by a similarity (aligned 1). Returns
+ * 1 when the result is usable, 0 when not, -1 on no memory; a flattening
+ * error (not a disk) counts as unusable. */
 static int reflatten(chart_piece *p, const double *target, double *scratch, int aligned, const char **how)
 {
     chart_uv_check chk;
     const int anchored = (int)(sizeof reflatten_anchor_lambda / sizeof reflatten_anchor_lambda[0]);
-    for (int attempt = 0; attempt < anchored + (aligned ? 2 : 0); attempt++) {
+    for (int attempt = aligned ? anchored : 0; attempt < (aligned ? anchored + 2 : anchored); attempt++) {
         neuv_status s;
         if (attempt < anchored) {
             s = lscm_anchored(p->sub, target, reflatten_anchor_lambda[attempt], p->uv);
@@ -667,20 +667,20 @@ static neuv_status pull_past_borders(struct neuv_unwrap_result *r, chart_span *s
      * packing left between islands, then none. */
     const double reach[2] = {0.5 * r->opts.padding / (r->opts.resolution > 0 ? r->opts.resolution : 1), 0.0};
     for (int round = 0; s == NEUV_OK && round < 2; round++) {
-        int any = 0, *pairs = NULL, np = 0;
+        int any = 0;
         for (int c = 0; c < nc; c++) {
             span_bounds(m, &span[c]);
             chart_span *A = &span[c];
             hot[c] = out[c] = A->lo[0] < 0 || A->lo[1] < 0 || A->hi[0] > 1 || A->hi[1] > 1;
             any |= hot[c];
         }
-        if ((s = overlapping_pairs(r, &pairs, &np))) break;
-        for (int k = 0; k < 2 * np; k++) hot[pairs[k]] = 1;
-        mem_free(pairs);
-        if (!any && np == 0) break;
-        /* Only the faces on an overlap: the corners past the seam elsewhere stay. */
-        if (np > 0 && (s = uv_overlap_faces(m->uv, m->nf, m->tri_uv, r->face_chart, OVERLAP_RESOLUTION, hit))) break;
-        if (np == 0) memset(hit, 0, (size_t)m->nf);
+        /* The faces on an overlap (only their corners past the seam are
+         * pulled; elsewhere they stay): their charts are the ones that
+         * overlap another (uv_overlap_chart_pairs' charts, same raster). */
+        if ((s = uv_overlap_faces(m->uv, m->nf, m->tri_uv, r->face_chart, OVERLAP_RESOLUTION, hit))) break;
+        for (int f = 0; f < m->nf; f++)
+            if (hit[f]) { hot[r->face_chart[f]] = 1; any = 1; }
+        if (!any) break;
         for (int c = 0; c < nc && s == NEUV_OK; c++) {
             if (!hot[c]) continue;
             chart_piece *p = &pieces[c];
