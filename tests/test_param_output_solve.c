@@ -272,6 +272,18 @@ int main(void)
     CHECK(qh <= qs + 1e-9);
     CHECK(qh < 1.08); /* measured 1.057: a head reads every hidden layer */
     CHECK(fl1 <= fl0);
+    {   /* The charts are solved side by side: the same heads and counts on two threads. */
+        float *heads2 = malloc(sizeof(float) * 2 * (size_t)hs);
+        param_solve_report rep2;
+        nn_set_threads(2);
+        CHECK_INT(param_output_solve_heads(&f, &two.d, 1e-3, 6, heads2, &rep2), NEUV_OK);
+        nn_set_threads(1);
+        CHECK(memcmp(heads, heads2, sizeof(float) * 2 * (size_t)hs) == 0);
+        CHECK_INT(rep2.steps, rep.steps);
+        CHECK_INT(rep2.heads_improved, rep.heads_improved);
+        CHECK(rep2.energy_after == rep.energy_after);
+        free(heads2);
+    }
 
     /* A head solved again from a start on another triangulation of the same
      * chart (a 30x30 grid of the same square): with no step it is the start

@@ -55,16 +55,25 @@ typedef struct normal_eq {
     int n, cap, used;
     double *a, *g;     /* n by n (upper triangle), n */
     double *rows, *c;  /* cap by n, cap */
+    /* Filled by vertex_eq_flush (cap 0): its scratch, VERTEX_EQ_CHUNK rows
+     * of K = n / 2 features and their three products, the chunk's h values
+     * and vertices. Each system has its own, so that blocks can be solved
+     * side by side. */
+    double *scratch, *hc;
+    int *chunk;
 } normal_eq;
+
+enum { VERTEX_EQ_CHUNK = 128 };
 
 static void normal_eq_free(normal_eq *q)
 {
     mem_free(q->a); mem_free(q->g); mem_free(q->rows); mem_free(q->c);
+    mem_free(q->scratch); mem_free(q->hc); mem_free(q->chunk);
     memset(q, 0, sizeof *q);
 }
 
 /* cap: rows buffered before they are added to A (0: A and g are filled
- * otherwise, by vertex_eq_flush). */
+ * otherwise, by vertex_eq_flush, for n = 2 K). */
 static neuv_status normal_eq_init(normal_eq *q, int n, int cap)
 {
     memset(q, 0, sizeof *q);
@@ -72,11 +81,18 @@ static neuv_status normal_eq_init(normal_eq *q, int n, int cap)
     q->cap = cap;
     q->a = mem_calloc((size_t)n * n, sizeof(double));
     q->g = mem_calloc((size_t)n, sizeof(double));
+    int ok = q->a && q->g;
     if (cap > 0) {
         q->rows = mem_calloc((size_t)q->cap * n, sizeof(double));
         q->c = mem_calloc((size_t)q->cap, sizeof(double));
+        ok = ok && q->rows && q->c;
+    } else {
+        q->scratch = mem_alloc(sizeof(double) * VERTEX_EQ_CHUNK * (size_t)(n / 2) * 4);
+        q->hc = mem_alloc(sizeof(double) * 2 * VERTEX_EQ_CHUNK);
+        q->chunk = mem_alloc(sizeof(int) * VERTEX_EQ_CHUNK);
+        ok = ok && q->scratch && q->hc && q->chunk;
     }
-    if (!q->a || !q->g || (cap > 0 && (!q->rows || !q->c))) { normal_eq_free(q); return error_nomem("output-layer solve"); }
+    if (!ok) { normal_eq_free(q); return error_nomem("output-layer solve"); }
     return NEUV_OK;
 }
 
@@ -129,7 +145,6 @@ typedef struct block {
  * into these sparse sums (a few numbers per row); the dense products cost
  * about 6 V K² for a block of V vertices instead of the rows' 4 R K² (R ≈ 6 V
  * rows: two per face, two per vertex, the barrier's), K = H + 1 the features. */
-enum { VERTEX_EQ_CHUNK = 128 };
 
 typedef struct vertex_eq {
     int *start, *col;        /* CSR over vertices: each vertex's neighbours in its faces, itself included */
@@ -137,19 +152,13 @@ typedef struct vertex_eq {
     int *diag;               /* nv: the entry of (v, v) */
     double *muu, *muv, *mvv; /* per entry */
     double *hu, *hv;         /* nv */
-    /* vertex_eq_flush's scratch, made once (a fresh one per Gauss-Newton
-     * step costs page faults): VERTEX_EQ_CHUNK rows of K features and their
-     * three products, the chunk's h values and vertices. */
     int K;
-    double *scratch, *hc;
-    int *chunk;
 } vertex_eq;
 
 static void vertex_eq_free(vertex_eq *e)
 {
     mem_free(e->start); mem_free(e->col); mem_free(e->face_pos); mem_free(e->diag);
     mem_free(e->muu); mem_free(e->muv); mem_free(e->mvv); mem_free(e->hu); mem_free(e->hv);
-    mem_free(e->scratch); mem_free(e->hc); mem_free(e->chunk);
     memset(e, 0, sizeof *e);
 }
 
@@ -165,9 +174,6 @@ static neuv_status vertex_eq_init(vertex_eq *e, int nv, int nf, const int *tri, 
 {
     memset(e, 0, sizeof *e);
     e->K = H + 1;
-    e->scratch = mem_alloc(sizeof(double) * VERTEX_EQ_CHUNK * (size_t)e->K * 4);
-    e->hc = mem_alloc(sizeof(double) * 2 * VERTEX_EQ_CHUNK);
-    e->chunk = mem_alloc(sizeof(int) * VERTEX_EQ_CHUNK);
     int *fstart = mem_calloc((size_t)nv + 1, sizeof(int)), *flist = mem_alloc(sizeof(int) * (3 * (size_t)nf + 1));
     e->start = mem_calloc((size_t)nv + 1, sizeof(int));
     e->face_pos = mem_alloc(sizeof(int) * (9 * (size_t)nf + 1));
@@ -175,8 +181,8 @@ static neuv_status vertex_eq_init(vertex_eq *e, int nv, int nf, const int *tri, 
     e->hu = mem_calloc((size_t)nv + 1, sizeof(double));
     e->hv = mem_calloc((size_t)nv + 1, sizeof(double));
     neuv_status s = NEUV_OK;
-    if (!fstart || !flist || !e->start || !e->face_pos || !e->diag || !e->hu || !e->hv || !e->scratch || !e->hc ||
-        !e->chunk) { s = error_nomem("output-layer solve"); goto done; }
+    if (!fstart || !flist || !e->start || !e->face_pos || !e->diag || !e->hu || !e->hv)
+        { s = error_nomem("output-layer solve"); goto done; }
     /* faces of each vertex */
     for (int f = 0; f < nf; f++)
         for (int k = 0; k < 3; k++) fstart[tri[3 * f + k] + 1]++;
@@ -276,8 +282,8 @@ static void vertex_eq_flush(const vertex_eq *e, const float *phi, const int *ver
     int K = e->K, H = K - 1, N = q->n;
     memset(q->a, 0, sizeof(double) * (size_t)N * N);
     memset(q->g, 0, sizeof(double) * (size_t)N);
-    double *C = e->scratch, *hc = e->hc;
-    int *chunk = e->chunk;
+    double *C = q->scratch, *hc = q->hc;
+    int *chunk = q->chunk;
     double *Puu = C + VERTEX_EQ_CHUNK * (size_t)K, *Puv = Puu + VERTEX_EQ_CHUNK * (size_t)K, *Pvv = Puv + VERTEX_EQ_CHUNK * (size_t)K;
     /* Vertices no row touches add nothing (on the faces split in four, the
      * edge midpoints carry rows only where the fold barrier is active). */
@@ -1000,6 +1006,21 @@ static int solve_from_fit(solve_state *st, const block *b, int chart, double anc
     return got < 0 ? -1 : kept;
 }
 
+/* order (n charts) sorted by vertex count (CSR vstart), largest first,
+ * ties by chart index: an insertion sort, the charts are few. */
+static void chart_order_by_size(int *order, int n, const int *vstart)
+{
+    for (int i = 1; i < n; i++) {
+        int c = order[i], size = vstart[c + 1] - vstart[c], j = i;
+        for (; j > 0; j--) {
+            int p = order[j - 1], ps = vstart[p + 1] - vstart[p];
+            if (ps > size || (ps == size && p < c)) break;
+            order[j] = p;
+        }
+        order[j] = c;
+    }
+}
+
 neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data *d, double anchor, int steps,
                                      float *heads, param_solve_report *rep)
 {
@@ -1011,10 +1032,10 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
     /* A head reads every hidden layer; it starts as the shared output layer
      * (zero weight on all but the last hidden layer, which comes last). */
     int W = f->width, H = param_mlp_head_width(f), n = 2 * (H + 1), off = H - W;
-    double *shared = mem_calloc((size_t)n, sizeof(double)), *theta = mem_alloc(sizeof(double) * (size_t)n);
+    double *shared = mem_calloc((size_t)n, sizeof(double));
     double *last = mem_alloc(sizeof(double) * 2 * (size_t)(W + 1));
     solve_state st;
-    if (!shared || !theta || !last) { mem_free(shared); mem_free(theta); mem_free(last); return error_nomem("output-layer solve"); }
+    if (!shared || !last) { mem_free(shared); mem_free(last); return error_nomem("output-layer solve"); }
     theta_from_layer(&f->rest[f->depth - 2], W, last);
     for (int j = 0; j < 2; j++) {
         for (int i = 0; i < W; i++) shared[(size_t)j * (H + 1) + off + i] = last[(size_t)j * (W + 1) + i];
@@ -1026,27 +1047,52 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
         block all = {st.all_faces, st.all_verts, d->nf, d->nv};
         rep->energy_before = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
     }
-    for (int c = 0; s == NEUV_OK && c < d->n_charts; c++) {
-        block b = {st.face_list + st.face_start[c], st.vert_list + st.vert_start[c],
-                   st.face_start[c + 1] - st.face_start[c], st.vert_start[c + 1] - st.vert_start[c]};
-        memcpy(theta, shared, sizeof(double) * (size_t)n);
-        int taken = b.nf > 0 ? solve_block(&st, &b, anchor, steps, theta) : 0;
-        if (taken >= 0 && b.nf > 0 && d->fit_uv && block_flips(&st, &b) > 0) {
-            int refit = solve_from_fit(&st, &b, c, anchor, steps, theta);
-            if (refit < 0) taken = -1;
-            else if (refit) { rep->heads_refit++; taken = taken > 0 ? taken : 1; }
+    /* Each chart's head on its own: the charts are solved side by side, the
+     * largest first (each solve touches only its chart's vertices and faces,
+     * so the heads are the same on any thread count and in any order). */
+    int nc = d->n_charts > 0 ? d->n_charts : 0;
+    int *order = mem_alloc(sizeof(int) * (size_t)(nc + 1)), *taken_of = mem_calloc((size_t)nc + 1, sizeof(int));
+    int *refit_of = mem_calloc((size_t)nc + 1, sizeof(int));
+    if (s == NEUV_OK && (!order || !taken_of || !refit_of)) s = error_nomem("output-layer solve");
+    if (s == NEUV_OK) {
+        for (int c = 0; c < nc; c++) order[c] = c;
+        chart_order_by_size(order, nc, st.vert_start);
+#pragma omp parallel
+        {
+            double *th = mem_alloc(sizeof(double) * (size_t)n);
+#pragma omp for schedule(dynamic, 1)
+            for (int k = 0; k < nc; k++) {
+                int c = order[k];
+                block b = {st.face_list + st.face_start[c], st.vert_list + st.vert_start[c],
+                           st.face_start[c + 1] - st.face_start[c], st.vert_start[c + 1] - st.vert_start[c]};
+                if (!th) { taken_of[c] = -1; continue; }
+                memcpy(th, shared, sizeof(double) * (size_t)n);
+                int taken = b.nf > 0 ? solve_block(&st, &b, anchor, steps, th) : 0;
+                if (taken >= 0 && b.nf > 0 && d->fit_uv && block_flips(&st, &b) > 0) {
+                    int refit = solve_from_fit(&st, &b, c, anchor, steps, th);
+                    if (refit < 0) taken = -1;
+                    else if (refit) { refit_of[c] = 1; taken = taken > 0 ? taken : 1; }
+                }
+                taken_of[c] = taken;
+                if (taken >= 0)
+                    for (int i = 0; i < n; i++) heads[(size_t)c * n + i] = (float)th[i];
+            }
+            mem_free(th);
         }
-        if (taken < 0) { s = error_nomem("output-layer solve"); break; }
-        rep->heads_improved += taken > 0;
-        rep->steps += taken;
-        for (int i = 0; i < n; i++) heads[(size_t)c * n + i] = (float)theta[i];
+        for (int c = 0; c < nc && s == NEUV_OK; c++) {
+            if (taken_of[c] < 0) { s = error_nomem("output-layer solve"); break; }
+            rep->heads_refit += refit_of[c];
+            rep->heads_improved += taken_of[c] > 0;
+            rep->steps += taken_of[c];
+        }
     }
+    mem_free(order); mem_free(taken_of); mem_free(refit_of);
     if (s == NEUV_OK) {
         block all = {st.all_faces, st.all_verts, d->nf, d->nv};
         rep->energy_after = block_energy(d, &all, st.uv, st.sigma, NULL, NULL);
     }
     solve_state_free(&st);
-    mem_free(shared); mem_free(theta);
+    mem_free(shared);
     return s;
 }
 
