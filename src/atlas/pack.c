@@ -259,7 +259,10 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
 {
     const int R = P->resolution, pad = P->padding;
     occupancy occ;
-    double *q = mem_alloc(sizeof *q * 2 * (size_t)(P->max_verts > 0 ? P->max_verts : 1));
+    /* A chart's shapes at its turns are made side by side, each thread with its own scratch. */
+    int nt = omp_get_max_threads() > 0 ? omp_get_max_threads() : 1;
+    size_t qn = 2 * (size_t)(P->max_verts > 0 ? P->max_verts : 1);
+    double *q = mem_alloc(sizeof *q * qn * (size_t)nt);
     if (!q || occupancy_init(&occ, R, pad) != 0) { mem_free(q); return -1; }
     if (pc->g != g) pack_cache_reset(pc, g);
     double placed = 0, total = 0;
@@ -276,16 +279,32 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
         int ci = P->sorted[hs->order][n];
         const chart_info *c = &P->ch[ci];
         if (c->f_end == c->f_begin || (P->done && P->done[ci])) continue;
-        int ncand = 0;
+        int ncand = 0, want[pack_turns_max + 1], nwant = 0, make[pack_turns_max + 1], nmake = 0, failed = 0;
         for (int j = 0; j <= pack_turns_max; j++) {
             /* Turn j is one of this heuristic's turns, or the smallest square's turn when it is
              * new and either this heuristic tries free turns or the chart fits no other way. */
             if (j < pack_turns_max ? j % (pack_turns_max / hs->turns) != 0
                                    : c->fit_angle == 0 || (hs->turns == 1 && g * fmax(c->W, c->H) + 1 <= R - 2 * pad))
                 continue;
+            want[nwant++] = j;
+            if (!pc->t[(size_t)ci * (pack_turns_max + 1) + j].state) make[nmake++] = j;
+        }
+        /* The shapes not made yet at this scale, side by side (each depends
+         * only on the chart, the turn and the scale); they are then kept or
+         * not in turn order, as when they were made one by one. */
+#pragma omp parallel for schedule(dynamic, 1) reduction(|| : failed) if (nmake > 1 && nt > 1)
+        for (int k = 0; k < nmake; k++) {
+            int th = omp_get_thread_num() < nt ? omp_get_thread_num() : 0;
+            turn_shape *t = &scratch[make[k]];
+            if (turn_shape_make(P, c, make[k], g, q + qn * (size_t)th, t) != 0) { turn_shape_clear(t); failed = 1; }
+        }
+        if (failed) rc = -1;
+        for (int w = 0; w < nwant && rc == 1; w++) {
+            int j = want[w];
             turn_shape *t = &pc->t[(size_t)ci * (pack_turns_max + 1) + j];
             if (!t->state) {
-                if (turn_shape_make(P, c, j, g, q, t) != 0) { turn_shape_clear(t); rc = -1; break; }
+                *t = scratch[j];
+                memset(&scratch[j], 0, sizeof scratch[j]);
                 if (pc->bytes + t->bytes > pc->budget) { /* over budget: use it now, keep nothing */
                     scratch[j] = *t;
                     memset(t, 0, sizeof *t);
