@@ -4,6 +4,8 @@
  * differences, so the only noise is float rounding of the op itself. */
 #include "check.h"
 
+#include <omp.h>
+
 #include "core/rng.h"
 #include "nn/mlp.h"
 #include "nn/nn.h"
@@ -355,6 +357,50 @@ static void threaded_linear_check(int rows, int in, int out, nn_activation act)
     nn_params_free(&ps);
 }
 
+/* Products split for 2 threads give the same bits when called inside a
+ * parallel region (charts solved side by side), where their blocks run one
+ * after another on the calling thread: a layer and a plain product, forward,
+ * each computed at top level on 2 threads and by both threads of a region. */
+static void nested_split_check(int rows, int in, int out)
+{
+    nn_params ps;
+    nn_params_init(&ps);
+    nn_tensor *x = nn_params_add(&ps, rows, in, "x"), *w = nn_params_add(&ps, in, out, "w");
+    nn_tensor *b = nn_params_add(&ps, 1, out, "b");
+    for (long i = 0; i < (long)rows * in; i++) x->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+    for (long i = 0; i < (long)in * out; i++) w->data[i] = (float)((2 * rng_uniform(&gen) - 1) * 0.2);
+    for (int i = 0; i < out; i++) b->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+    size_t n = (size_t)rows * out;
+    float *top = malloc(2 * n * sizeof *top), *inner = malloc(4 * n * sizeof *inner);
+    nn_set_threads(2);
+    nn_ctx *ctx = nn_ctx_create(0);
+    nn_tensor *y = nn_linear_act(ctx, x, w, b, NN_ACT_LEAKY_RELU, 0.1f), *p = nn_matmul(ctx, x, w);
+    CHECK(y && p);
+    if (y && p) { memcpy(top, y->data, n * sizeof *top); memcpy(top + n, p->data, n * sizeof *top); }
+    nn_ctx_free(ctx);
+    int ran = 0;
+#pragma omp parallel num_threads(2) reduction(+ : ran)
+    {
+        int t = omp_get_thread_num();
+        nn_ctx *c2 = nn_ctx_create(0);
+        nn_tensor *y2 = c2 ? nn_linear_act(c2, x, w, b, NN_ACT_LEAKY_RELU, 0.1f) : NULL;
+        nn_tensor *p2 = c2 ? nn_matmul(c2, x, w) : NULL;
+        if (y2 && p2 && t < 2) {
+            memcpy(inner + 2 * n * t, y2->data, n * sizeof *inner);
+            memcpy(inner + 2 * n * t + n, p2->data, n * sizeof *inner);
+            ran++;
+        }
+        nn_ctx_free(c2);
+    }
+    nn_set_threads(1);
+    CHECK_INT(ran, 2);
+    for (int t = 0; t < ran && t < 2; t++) CHECK(memcmp(top, inner + 2 * n * t, 2 * n * sizeof *top) == 0);
+    printf("  %dx%d->%d split for 2 threads, inside a parallel region: %s\n", rows, in, out,
+           ran == 2 && memcmp(top, inner, 2 * n * sizeof *top) == 0 ? "same bits" : "DIFFERENT");
+    free(top); free(inner);
+    nn_params_free(&ps);
+}
+
 int main(void)
 {
     rng_seed(&gen, 2024);
@@ -455,6 +501,7 @@ int main(void)
     threaded_linear_check(1000, 70, 90, NN_ACT_LEAKY_RELU); /* 15.6 row blocks: a partial last one */
     threaded_linear_check(777, 64, 100, NN_ACT_TANH);
     threaded_linear_check(700, 100, 64, NN_ACT_NONE);
+    nested_split_check(3000, 96, 96);
     mlp_check(NN_ACT_LEAKY_RELU, "8-layer MLP (leaky, tanh out)");
     mlp_check(NN_ACT_TANH, "8-layer MLP (tanh, tanh out)");
 

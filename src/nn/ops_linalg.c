@@ -24,12 +24,14 @@
  * pool steal the cores of the other (a step ran at 45% of the sgemm rate on 2
  * cores). One pool avoids that. The blocks depend only on the sizes and the
  * thread count and each is one call, whichever thread runs it, so results are
- * identical for a given thread count. */
+ * identical for a given thread count. Inside a parallel region (charts solved
+ * side by side) the same blocks run one after another on the calling thread:
+ * the same bits as the call at top level on that many threads. */
 static void gemm(int ta, int tb, int m, int n, int k, const float *a, int lda, const float *b, int ldb,
                  float beta, float *c, int ldc)
 {
     int threads = omp_get_max_threads();
-    if (threads <= 1 || (double)m * n * k < SPLIT_MIN_WORK || omp_in_parallel()) {
+    if (threads <= 1 || (double)m * n * k < SPLIT_MIN_WORK) {
         cblas_sgemm(CblasRowMajor, ta ? CblasTrans : CblasNoTrans, tb ? CblasTrans : CblasNoTrans, m, n, k,
                     1.0f, a, lda, b, ldb, beta, c, ldc);
         return;
@@ -39,7 +41,7 @@ static void gemm(int ta, int tb, int m, int n, int k, const float *a, int lda, c
      * the OS preempts delays one small block, not half the product. */
     int blocks = BLOCKS_PER_THREAD * threads;
     if (blocks > len / 16) blocks = len / 16 > 0 ? len / 16 : 1;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (!omp_in_parallel())
     for (int t = 0; t < blocks; t++) {
         /* Block boundaries on multiples of 16 keep the kernels' panels whole. */
         int lo = (int)((long)len * t / blocks) & ~15, hi = t == blocks - 1 ? len : (int)((long)len * (t + 1) / blocks) & ~15;
@@ -107,14 +109,19 @@ void nn_backward_matmul(nn_ctx *ctx, nn_tensor *t)
  * number of threads). */
 #define LINEAR_ROW_BLOCK 64
 
-/* The threads for a layer of `work` multiply-adds over `nblocks` row blocks. */
+/* The threads a layer of `work` multiply-adds over `nblocks` row blocks is
+ * split for (its chunks depend on it); inside a parallel region the chunks
+ * run one after another on the calling thread (linear_run_threads), with the
+ * same bits as at top level. */
 static int linear_threads(double work, long nblocks)
 {
-    int threads = omp_in_parallel() ? 1 : omp_get_max_threads();
+    int threads = omp_get_max_threads();
     if (work < SPLIT_MIN_WORK) threads = 1;
     if (threads > nblocks) threads = (int)nblocks;
     return threads < 1 ? 1 : threads;
 }
+
+static int linear_run_threads(int threads) { return omp_in_parallel() ? 1 : threads; }
 
 /* y[rows lo..hi) = act(y + b) in place. */
 NN_VECTORIZE static void bias_activation(float *y, const float *bias, long lo, long hi, long cols, nn_activation act, float s)
@@ -164,7 +171,7 @@ nn_tensor *nn_linear_act(nn_ctx *ctx, nn_tensor *x, nn_tensor *w, nn_tensor *b, 
      * one parallel section per layer; chunks go to threads as they free up. */
     long chunks = threads > 1 ? BLOCKS_PER_THREAD * threads : 1;
     if (chunks > nblocks) chunks = nblocks;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (linear_run_threads(threads) > 1)
     for (long ch = 0; ch < chunks; ch++) {
         long lo = nblocks * ch / chunks * LINEAR_ROW_BLOCK, hi = nblocks * (ch + 1) / chunks * LINEAR_ROW_BLOCK;
         if (hi > rows) hi = rows;
@@ -216,7 +223,7 @@ void nn_backward_linear(nn_ctx *ctx, nn_tensor *t)
     int threads = linear_threads((double)rows * cols * in, nblocks);
     long chunks = threads > 1 ? BLOCKS_PER_THREAD * threads : 1;
     if (chunks > nblocks) chunks = nblocks;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (linear_run_threads(threads) > 1)
     for (long ch = 0; ch < chunks; ch++) {
         long b0 = nblocks * ch / chunks, b1 = nblocks * (ch + 1) / chunks;
         for (long blk = b0; blk < b1; blk++) {
