@@ -78,6 +78,9 @@ assert 1 <= md["heads_solved_on_mesh"] <= md["network_charts"] <= net, (md, pv)
 assert "head solved on this mesh" in md["map_from"], md["map_from"]
 assert pv["network_area_fraction"] > 0.85, pv  # measured 0.905 (0.843 before heads were solved on the mesh)
 PYEOF
+  # The heads are solved on the mesh side by side on the threads: a second run gives the same bytes.
+  "$NEUV" unwrap "$TMP/blob4.obj" -o "$TMP/blob4u2.obj" --train-faces 1500 --iters 150 --threads 2 --quiet \
+    && cmp -s "$TMP/blob4u.obj" "$TMP/blob4u2.obj" && ok || bad "--train-faces: two runs on 2 threads differ"
 else bad "unwrap --train-faces 1500 failed"; fi
 
 # A chart the networks folded on the copy (LSCM's there) whose head, solved

@@ -5,6 +5,7 @@
 #include <lapacke.h>
 #include <limits.h>
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -314,11 +315,20 @@ static void vertex_eq_flush(const vertex_eq *e, const float *phi, const int *ver
             hc[r] = e->hu[v];
             hc[VERTEX_EQ_CHUNK + r] = e->hv[v];
         }
-        cblas_dgemm(CblasRowMajor, CblasTrans, CblasNoTrans, K, K, m, 1.0, C, K, Puu, K, 1.0, q->a, N);
-        cblas_dgemm(CblasRowMajor, CblasTrans, CblasNoTrans, K, K, m, 1.0, C, K, Puv, K, 1.0, q->a + K, N);
-        cblas_dgemm(CblasRowMajor, CblasTrans, CblasNoTrans, K, K, m, 1.0, C, K, Pvv, K, 1.0, q->a + (size_t)K * N + K, N);
-        cblas_dgemv(CblasRowMajor, CblasTrans, m, K, -1.0, C, K, hc, 1, 1.0, q->g, 1);
-        cblas_dgemv(CblasRowMajor, CblasTrans, m, K, -1.0, C, K, hc + VERTEX_EQ_CHUNK, 1, 1.0, q->g + K, 1);
+        /* The three blocks of A are three independent products, each the
+         * same single-threaded call on whichever thread runs it (the same
+         * bits on any thread count); outside the heads' side-by-side solves
+         * they share the threads. */
+#pragma omp parallel for schedule(dynamic, 1) if (!omp_in_parallel() && omp_get_max_threads() > 1)
+        for (int b = 0; b < 3; b++) {
+            const double *P = b == 0 ? Puu : b == 1 ? Puv : Pvv;
+            double *out = b == 0 ? q->a : b == 1 ? q->a + K : q->a + (size_t)K * N + K;
+            cblas_dgemm(CblasRowMajor, CblasTrans, CblasNoTrans, K, K, m, 1.0, C, K, P, K, 1.0, out, N);
+            if (b == 1) { /* this block's thread also takes g */
+                cblas_dgemv(CblasRowMajor, CblasTrans, m, K, -1.0, C, K, hc, 1, 1.0, q->g, 1);
+                cblas_dgemv(CblasRowMajor, CblasTrans, m, K, -1.0, C, K, hc + VERTEX_EQ_CHUNK, 1, 1.0, q->g + K, 1);
+            }
+        }
     }
 }
 

@@ -1083,6 +1083,88 @@ static int no_worse_map(const neuv_mesh *sub, const double *a, const double *b)
     return within_map(sub, a, b, 1.0);
 }
 
+/* A chart's head solved on this mesh ahead of the charts' loop
+ * (presolve_heads): param_net_apply_solved's outputs for the chart as the
+ * model carried it, taken by the loop when it reaches the chart unsplit. */
+typedef struct presolved {
+    int head_id;  /* the model chart whose head was solved (-1: none) */
+    int visited;  /* the loop has reached the chart (a second visit follows a split) */
+    neuv_status s;
+    double *uv;   /* 2 nv of the chart's piece */
+    float *head;  /* param_head_size */
+    double gain;
+} presolved;
+
+static void presolved_drop(presolved *ps)
+{
+    mem_free(ps->uv);
+    mem_free(ps->head);
+    ps->uv = NULL;
+    ps->head = NULL;
+    ps->head_id = -1;
+}
+
+/* param_net_apply_solved for head `id` on piece p, from *ps when it holds
+ * that solve (then dropped: a chart takes it once). */
+static neuv_status apply_solved(presolved *ps, const param_net_model *param, int id, const chart_piece *p, double *uv,
+                                float *head, double *gain)
+{
+    if (!ps || ps->head_id != id || !ps->uv) return param_net_apply_solved(param, id, p->sub, uv, head, gain, NULL);
+    neuv_status s = ps->s;
+    if (s == NEUV_OK) {
+        memcpy(uv, ps->uv, sizeof(double) * 2 * (size_t)p->sub->nv);
+        if (head) memcpy(head, ps->head, sizeof(float) * (size_t)param_head_size(&param->f));
+        if (gain) *gain = ps->gain;
+    }
+    presolved_drop(ps);
+    return s;
+}
+
+/* The model chart whose head the loop of unwrap_apply_param solves on
+ * chart c's piece, as the chart was carried: its network chart, or for a
+ * chart the networks folded on the copy the head they had for it; -1 when
+ * none is solved. */
+static int head_to_solve(const unwrap_model *md, const unwrap_apply_options *o, int mc)
+{
+    if (!o->refine_on_mesh || !md->param || !md->param->heads) return -1;
+    if (md->chart_net[mc] >= 0) return md->chart_net[mc];
+    return md->chart_tried && md->chart_tried[mc] >= 0 ? md->chart_tried[mc] : -1;
+}
+
+/* Every chart's head solved on its piece side by side (each solve on one
+ * thread: the same bits as in the loop on one thread), before the loop
+ * takes the charts one by one; a chart the loop splits solves its pieces
+ * there. Allocation failures leave a chart unsolved (the loop solves it). */
+static presolved *presolve_heads(const struct neuv_unwrap_result *r, const unwrap_model *md,
+                                 const unwrap_apply_options *o, const int *model_chart)
+{
+    int n = r->n_charts;
+    presolved *pre = mem_calloc((size_t)(n > 0 ? n : 1), sizeof *pre);
+    if (!pre) return NULL;
+    int hs = md->param ? param_head_size(&md->param->f) : 0;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int c = 0; c < n; c++) {
+        presolved *ps = &pre[c];
+        ps->head_id = -1;
+        int id = head_to_solve(md, o, model_chart[c]);
+        if (id < 0) continue;
+        chart_piece p;
+        memset(&p, 0, sizeof p);
+        unwrap_piece_clear(&p);
+        if (unwrap_piece_build(r->mesh, r->face_chart, c, &p) == NEUV_OK) {
+            ps->uv = mem_alloc(sizeof(double) * 2 * (size_t)p.sub->nv);
+            ps->head = mem_alloc(sizeof(float) * (size_t)(hs > 0 ? hs : 1));
+            if (ps->uv && ps->head) {
+                ps->s = param_net_apply_solved(md->param, id, p.sub, ps->uv, ps->head, &ps->gain, NULL);
+                ps->head_id = id;
+            }
+            if (ps->head_id < 0 || ps->s == NEUV_ERR_NOMEM) presolved_drop(ps); /* the loop tries again */
+        }
+        unwrap_piece_clear(&p);
+    }
+    return pre;
+}
+
 /* On the mesh a simplified copy's model is applied to (--train-faces), a
  * chart's head (MLP_f's output layer for it) is solved again on the
  * chart's own triangles (param_net_apply_solved): the learnt head fits the
@@ -1098,13 +1180,13 @@ static int no_worse_map(const neuv_mesh *sub, const double *a, const double *b)
  * refinement then stalled at qce 1.037 where the learnt map refined to
  * 1.017). head, gain: the solved head and its gain (NULL: not wanted).
  * Returns 1 when replaced, 0 when not, -1 on an error (*s set). */
-static int solve_head_on_mesh(chart_piece *p, const param_net_model *param, int net, double *uv, double *scratch,
-                              float *head, double *gain, neuv_status *s)
+static int solve_head_on_mesh(chart_piece *p, const param_net_model *param, int net, presolved *ps, double *uv,
+                              double *scratch, float *head, double *gain, neuv_status *s)
 {
     int n = p->sub->nv;
     double *solved = mem_alloc(sizeof(double) * 2 * (size_t)n);
     if (!solved) { *s = error_nomem("chart head"); return -1; }
-    *s = param_net_apply_solved(param, net, p->sub, solved, head, gain, NULL);
+    *s = apply_solved(ps, param, net, p, solved, head, gain);
     int take = 0;
     if (*s == NEUV_OK) {
         chart_uv_check chk;
@@ -1157,11 +1239,11 @@ static neuv_status split_network_chart(struct neuv_unwrap_result *r, int c, int 
  * this mesh's triangles, into p->uv. Returns 1 when that map is usable
  * (*mirror: whether it must be mirrored to run counter-clockwise), 0 when
  * not, -1 on an error (*s set). w, gain: the solved head and its gain
- * (NULL: not wanted). */
-static int solve_folded_head(chart_piece *p, const param_net_model *param, int head, double *scratch, int *mirror,
-                             float *w, double *gain, neuv_status *s)
+ * (NULL: not wanted); ps: the solve made ahead (NULL: none). */
+static int solve_folded_head(chart_piece *p, const param_net_model *param, int head, presolved *ps, double *scratch,
+                             int *mirror, float *w, double *gain, neuv_status *s)
 {
-    *s = param_net_apply_solved(param, head, p->sub, p->uv, w, gain, NULL);
+    *s = apply_solved(ps, param, head, p, p->uv, w, gain);
     if (*s != NEUV_OK) return -1;
     chart_uv_check chk;
     memcpy(scratch, p->uv, sizeof(double) * 2 * (size_t)p->sub->nv);
@@ -1224,8 +1306,12 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
     /* The source's refinement is carried over (its difference to the networks'
      * map, interpolated) unless the options ask to refine on this mesh. */
     int carry_refinement = md->refine > 0 && !o->refine_on_mesh;
-    int splits = 0;
+    int splits = 0, n0 = r->n_charts;
+    presolved *pre = o->refine_on_mesh ? presolve_heads(r, md, o, model_chart) : NULL;
     for (int c = 0; c < r->n_charts && s == NEUV_OK; c++) {
+        presolved *ps = pre && c < n0 ? &pre[c] : NULL;
+        if (ps && ps->visited) presolved_drop(ps); /* split since: its piece is another */
+        if (ps) ps->visited = 1;
         if (r->n_charts >= cap) { /* charts added by splits */
             int nc = 2 * r->n_charts;
             chart_piece *np = mem_realloc(pieces, sizeof *np * (size_t)nc);
@@ -1272,7 +1358,8 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
              * in area (L2 stretch), the bound that training's pieces of a
              * folded chart meet: an injective map can still squeeze a region
              * (face.obj: a chart at L2 stretch 26.6 against 1.29). */
-            int got = solve_folded_head(p, md->param, md->chart_tried[mc], scratch, &mirror, solved_w, &solved_gain, &s);
+            int got = solve_folded_head(p, md->param, md->chart_tried[mc], ps, scratch, &mirror, solved_w, &solved_gain,
+                                        &s);
             mapped = got > 0 && within_map(p->sub, p->uv, ext, SOLVED_HEAD_MAX_QCE_RATIO);
             if (mapped) net = md->chart_tried[mc];
             head_solved = mapped;
@@ -1303,7 +1390,7 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
             double *at = p->uv;
             if (!mapped) s = param_net_apply(md->param, net, closest, n, at);
             if (s == NEUV_OK && !mapped && o->refine_on_mesh && md->param->heads)
-                head_solved = solve_head_on_mesh(p, md->param, net, at, scratch, solved_w, &solved_gain, &s) > 0;
+                head_solved = solve_head_on_mesh(p, md->param, net, ps, at, scratch, solved_w, &solved_gain, &s) > 0;
             for (int v = 0; s == NEUV_OK && v < n; v++) {
                 if (vertex_chart[p->vmap[v]] == mc || o->refine_on_mesh) continue;
                 /* the extension, in the networks' own frame (before mirroring and placing) */
@@ -1487,6 +1574,8 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
         mem_free(target); mem_free(scratch);
     }
     r->model.refinement_carried = carry_refinement;
+    for (int c = 0; pre && c < n0; c++) presolved_drop(&pre[c]);
+    mem_free(pre);
     if (s == NEUV_OK) s = unwrap_assemble_uvs(m, pieces, r->n_charts);
     if (s == NEUV_OK) s = unwrap_keep_provenance(r, pieces);
     mem_free(repaired);
