@@ -305,17 +305,26 @@ static void threaded_matmul_check(int m, int n, int k)
     nn_set_threads(1);
 }
 
+/* A layer's input x (rows by in), weights w (in by out, small) and bias b,
+ * uniform random, as parameters of ps. */
+static void random_layer(nn_params *ps, int rows, int in, int out, nn_tensor **x, nn_tensor **w, nn_tensor **b)
+{
+    nn_params_init(ps);
+    *x = nn_params_add(ps, rows, in, "x");
+    *w = nn_params_add(ps, in, out, "w");
+    *b = nn_params_add(ps, 1, out, "b");
+    for (long i = 0; i < (long)rows * in; i++) (*x)->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+    for (long i = 0; i < (long)in * out; i++) (*w)->data[i] = (float)((2 * rng_uniform(&gen) - 1) * 0.2);
+    for (int i = 0; i < out; i++) (*b)->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+}
+
 /* The fused layer on 2 threads (row blocks, split weight-gradient product)
  * agrees with the unfused ops on one thread: values and all three gradients. */
 static void threaded_linear_check(int rows, int in, int out, nn_activation act)
 {
     nn_params ps;
-    nn_params_init(&ps);
-    nn_tensor *x = nn_params_add(&ps, rows, in, "x"), *w = nn_params_add(&ps, in, out, "w");
-    nn_tensor *b = nn_params_add(&ps, 1, out, "b");
-    for (long i = 0; i < (long)rows * in; i++) x->data[i] = (float)(2 * rng_uniform(&gen) - 1);
-    for (long i = 0; i < (long)in * out; i++) w->data[i] = (float)((2 * rng_uniform(&gen) - 1) * 0.2);
-    for (int i = 0; i < out; i++) b->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+    nn_tensor *x, *w, *b;
+    random_layer(&ps, rows, in, out, &x, &w, &b);
     float *wl = malloc((size_t)rows * out * sizeof *wl);
     for (long i = 0; i < (long)rows * out; i++) wl[i] = (float)(2 * rng_uniform(&gen) - 1);
     size_t nx = (size_t)rows * in, nw = (size_t)in * out;
@@ -364,12 +373,8 @@ static void threaded_linear_check(int rows, int in, int out, nn_activation act)
 static void nested_split_check(int rows, int in, int out)
 {
     nn_params ps;
-    nn_params_init(&ps);
-    nn_tensor *x = nn_params_add(&ps, rows, in, "x"), *w = nn_params_add(&ps, in, out, "w");
-    nn_tensor *b = nn_params_add(&ps, 1, out, "b");
-    for (long i = 0; i < (long)rows * in; i++) x->data[i] = (float)(2 * rng_uniform(&gen) - 1);
-    for (long i = 0; i < (long)in * out; i++) w->data[i] = (float)((2 * rng_uniform(&gen) - 1) * 0.2);
-    for (int i = 0; i < out; i++) b->data[i] = (float)(2 * rng_uniform(&gen) - 1);
+    nn_tensor *x, *w, *b;
+    random_layer(&ps, rows, in, out, &x, &w, &b);
     size_t n = (size_t)rows * out;
     float *top = malloc(2 * n * sizeof *top), *inner = malloc(4 * n * sizeof *inner);
     nn_set_threads(2);
