@@ -319,6 +319,43 @@ static void test_callbacks_and_cancel(void)
     neuv_atlas_destroy(a2);
 }
 
+/* Cancels at the first progress report of the heads solved on the full mesh
+ * (a mesh trained on a simplified copy), which run side by side. */
+typedef struct heads_cancel {
+    int seen, after;
+} heads_cancel;
+
+static int cancel_at_heads(void *user, const char *stage, double fraction, const char *detail)
+{
+    (void)stage; (void)fraction;
+    heads_cancel *h = user;
+    if (h->seen) h->after++;
+    if (detail && strstr(detail, "heads solved on this mesh")) h->seen = 1;
+    return !h->seen;
+}
+
+static void test_cancel_heads_on_mesh(void)
+{
+    static grid g;
+    make_cylinder(&g, 32, 12, 0.5f, 0);
+    neuv_mesh_decl d;
+    decl_of(&g, &d);
+    neuv_unwrap_options uo = quick_options(NEUV_METHOD_NEURAL);
+    uo.train_faces = 300;
+    uo.threads = 2;
+    heads_cancel h = {0, 0};
+    neuv_callbacks cb = {NULL, cancel_at_heads, &h};
+    neuv_atlas *a = NULL;
+    CHECK(neuv_atlas_create(&a) == NEUV_OK);
+    neuv_atlas_set_callbacks(a, &cb);
+    CHECK(neuv_atlas_add_mesh(a, &d) == NEUV_OK);
+    CHECK(neuv_atlas_generate(a, &uo) == NEUV_ERR_CANCELLED);
+    CHECK_INT(h.seen, 1);
+    CHECK_INT(h.after, 0);
+    CHECK_INT(neuv_atlas_stage(a), 0);
+    neuv_atlas_destroy(a);
+}
+
 /* Two unwraps with the neural method on two threads at once give the bytes
  * of one after the other. */
 typedef struct job {
@@ -710,6 +747,7 @@ int main(void)
     test_user_seams();
     test_output_mesh();
     test_callbacks_and_cancel();
+    test_cancel_heads_on_mesh();
     test_models();
     test_pack_existing();
     test_two_threads();

@@ -2,6 +2,7 @@
 #include "unwrap/unwrap_apply.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1131,23 +1132,27 @@ static int head_to_solve(const unwrap_model *md, const unwrap_apply_options *o, 
     return md->chart_tried && md->chart_tried[mc] >= 0 ? md->chart_tried[mc] : -1;
 }
 
-/* Every chart's head solved on its piece side by side (each solve on one
- * thread: the same bits as in the loop on one thread), before the loop
- * takes the charts one by one; a chart the loop splits solves its pieces
- * there. Allocation failures leave a chart unsolved (the loop solves it). */
+/* Every chart's head solved on its piece side by side (each solve's
+ * products cut as on the run's threads: the same bits as in the loop),
+ * before the loop takes the charts one by one; a chart the loop splits
+ * solves its pieces there. Allocation failures leave a chart unsolved (the
+ * loop solves it). Progress is reported from the calling thread; after a
+ * cancel the charts not started are left. */
 static presolved *presolve_heads(const struct neuv_unwrap_result *r, const unwrap_model *md,
                                  const unwrap_apply_options *o, const int *model_chart)
 {
     int n = r->n_charts;
     presolved *pre = mem_calloc((size_t)(n > 0 ? n : 1), sizeof *pre);
     if (!pre) return NULL;
-    int hs = md->param ? param_head_size(&md->param->f) : 0;
+    int hs = md->param ? param_head_size(&md->param->f) : 0, finished = 0, cancelled = 0;
+    for (int c = 0; c < n; c++) pre[c].head_id = -1;
 #pragma omp parallel for schedule(dynamic, 1)
     for (int c = 0; c < n; c++) {
         presolved *ps = &pre[c];
-        ps->head_id = -1;
-        int id = head_to_solve(md, o, model_chart[c]);
-        if (id < 0) continue;
+        int id = head_to_solve(md, o, model_chart[c]), stop;
+#pragma omp atomic read
+        stop = cancelled;
+        if (id < 0 || stop) continue;
         chart_piece p;
         memset(&p, 0, sizeof p);
         unwrap_piece_clear(&p);
@@ -1161,6 +1166,14 @@ static presolved *presolve_heads(const struct neuv_unwrap_result *r, const unwra
             if (ps->head_id < 0 || ps->s == NEUV_ERR_NOMEM) presolved_drop(ps); /* the loop tries again */
         }
         unwrap_piece_clear(&p);
+        int done;
+#pragma omp atomic capture
+        done = ++finished;
+        if (omp_get_thread_num() == 0 &&
+            log_progress("param", 0.5 * done / n, "heads solved on this mesh: %d of %d charts", done, n)) {
+#pragma omp atomic write
+            cancelled = 1;
+        }
     }
     return pre;
 }
@@ -1308,6 +1321,7 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
     int carry_refinement = md->refine > 0 && !o->refine_on_mesh;
     int splits = 0, n0 = r->n_charts;
     presolved *pre = o->refine_on_mesh ? presolve_heads(r, md, o, model_chart) : NULL;
+    if (log_cancelled()) s = error_cancelled();
     for (int c = 0; c < r->n_charts && s == NEUV_OK; c++) {
         presolved *ps = pre && c < n0 ? &pre[c] : NULL;
         if (ps && ps->visited) presolved_drop(ps); /* split since: its piece is another */
@@ -1336,7 +1350,7 @@ neuv_status unwrap_apply_param(struct neuv_unwrap_result *r, const unwrap_model 
         mem_free(anchor[c]);
         anchor[c] = NULL;
         if ((s = unwrap_piece_build(m, r->face_chart, c, p))) break;
-        log_progress("param", (double)c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
+        log_progress("param", (pre ? 0.5 : 0) + (pre ? 0.5 : 1) * c / r->n_charts, "chart %d of %d", c + 1, r->n_charts);
         int mc = model_chart[c], net = md->chart_net[mc], n = p->sub->nv, relaxed = 0, head_solved = 0;
         double *target = mem_alloc(sizeof(double) * 2 * (size_t)n), *scratch = mem_alloc(sizeof(double) * 2 * (size_t)n);
         double *ext = mem_alloc(sizeof(double) * 2 * (size_t)n), *delta = mem_alloc(sizeof(double) * 2 * (size_t)n);
