@@ -77,6 +77,13 @@ net = sum(pv["sources"][k]["charts"] for k in ("network", "network+refined") if 
 assert 1 <= md["heads_solved_on_mesh"] <= md["network_charts"] <= net, (md, pv)
 assert "head solved on this mesh" in md["map_from"], md["map_from"]
 assert pv["network_area_fraction"] > 0.85, pv  # measured 0.905 (0.843 before heads were solved on the mesh)
+# The copy's training has its stages too, and every second of the run is in one stage.
+sec = r["seconds"]; c = sec["copy"]
+assert c["total"] == md["train_seconds"] and c["patches"] > 0 and c["param"] > 0, c
+parts = sum(v for k, v in c.items() if k != "total")
+assert c["total"] - 0.1 <= parts <= c["total"], c
+full = sum(v for k, v in sec.items() if k not in ("total", "copy"))
+assert abs(full + c["total"] - sec["total"]) <= 0.02 * sec["total"], sec
 PYEOF
   # The heads are solved on the mesh side by side on the threads: a second run gives the same bytes.
   "$NEUV" unwrap "$TMP/blob4.obj" -o "$TMP/blob4u2.obj" --train-faces 1500 --iters 150 --threads 2 --quiet \

@@ -1735,6 +1735,7 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
     neuv_status s = mesh_simplify(copy, (double)train_faces / mesh->nf, &small);
     mesh_free(copy);
     if (s) return s;
+    double simplify_seconds = now_seconds() - t;
     log_message(NEUV_LOG_INFO, "training on a simplified copy: %d of %d faces", small->nf, mesh->nf);
     neuv_unwrap_result *tr = NULL;
     /* The copy's layout is nobody's texture, and its model carries one square:
@@ -1764,6 +1765,8 @@ neuv_status unwrap_budgeted(const neuv_mesh *mesh, const neuv_unwrap_options *op
         r->model.trained_on_copy = 1;
         r->model.train_faces = small_faces;
         r->model.train_seconds = train_seconds;
+        r->model.copy_simplify_seconds = simplify_seconds;
+        memcpy(r->model.copy_seconds, tr->seconds, sizeof r->model.copy_seconds);
         r->patches = tr->patches;
         r->patch_iterations = tr->patch_iterations;
         r->patch_iters_per_second = tr->patch_iters_per_second;

@@ -104,6 +104,8 @@ struct neuv_unwrap_result {
         int trained_on_copy;      /* 1: --train-faces: trained on a simplified copy of the input */
         int train_faces;          /* faces of the copy the model was trained on */
         double train_seconds;     /* the whole training unwrap of the copy */
+        double copy_simplify_seconds;            /* making the copy */
+        double copy_seconds[STAGE_COUNT];        /* the copy's training unwrap, stage by stage */
         int network_charts;       /* charts mapped by MLP_f */
         int transferred_charts;   /* charts whose UVs came from the source surface by closest point */
         int empty_charts;         /* source charts that got no face on this mesh */

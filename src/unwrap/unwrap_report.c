@@ -227,6 +227,21 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "metrics"); json_number(&w, r->seconds[STAGE_METRICS]);
     json_key(&w, "export"); json_number(&w, export_seconds);
     json_key(&w, "total"); json_number(&w, load_seconds + r->total_seconds + export_seconds);
+    if (r->model.trained_on_copy) { /* the stages above are the full mesh's; the copy's training here */
+        const double *c = r->model.copy_seconds;
+        json_key(&w, "copy");
+        json_begin_object(&w);
+        json_key(&w, "simplify"); json_number(&w, r->model.copy_simplify_seconds);
+        json_key(&w, "clean"); json_number(&w, c[STAGE_CLEAN]);
+        json_key(&w, "operators"); json_number(&w, c[STAGE_OPERATORS]);
+        json_key(&w, "patches"); json_number(&w, c[STAGE_PATCHES]);
+        json_key(&w, "param"); json_number(&w, c[STAGE_PARAM]);
+        json_key(&w, "repair"); json_number(&w, c[STAGE_REPAIR]);
+        json_key(&w, "pack"); json_number(&w, c[STAGE_PACK]);
+        json_key(&w, "metrics"); json_number(&w, c[STAGE_METRICS]);
+        json_key(&w, "total"); json_number(&w, r->model.train_seconds);
+        json_end_object(&w);
+    }
     json_end_object(&w);
 
     json_key(&w, "metrics");
