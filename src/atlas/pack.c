@@ -302,14 +302,12 @@ static int pack_attempt(const pack_ctx *P, pack_cache *pc, const pack_heuristic 
         for (int w = 0; w < nwant && rc == 1; w++) {
             int j = want[w];
             turn_shape *t = &pc->t[(size_t)ci * (pack_turns_max + 1) + j];
-            if (!t->state) {
-                *t = scratch[j];
-                memset(&scratch[j], 0, sizeof scratch[j]);
-                if (pc->bytes + t->bytes > pc->budget) { /* over budget: use it now, keep nothing */
-                    scratch[j] = *t;
-                    memset(t, 0, sizeof *t);
+            if (!t->state) { /* made above: kept in the cache, or over budget used now and dropped */
+                if (pc->bytes + scratch[j].bytes > pc->budget) {
                     t = &scratch[j];
                 } else {
+                    *t = scratch[j];
+                    memset(&scratch[j], 0, sizeof scratch[j]);
                     pc->bytes += t->bytes;
                 }
             }

@@ -152,6 +152,18 @@ void unwrap_source_summary(const struct neuv_unwrap_result *r, char *buf, size_t
     }
 }
 
+/* The stages from operators to metrics (seconds: STAGE_COUNT entries). */
+static void write_stage_seconds(json_writer *w, const double *seconds)
+{
+    static const struct { const char *key; int stage; } stages[] = {
+        {"operators", STAGE_OPERATORS}, {"patches", STAGE_PATCHES}, {"param", STAGE_PARAM},
+        {"repair", STAGE_REPAIR}, {"pack", STAGE_PACK}, {"metrics", STAGE_METRICS}};
+    for (size_t i = 0; i < sizeof stages / sizeof stages[0]; i++) {
+        json_key(w, stages[i].key);
+        json_number(w, seconds[stages[i].stage]);
+    }
+}
+
 /* The "model" section of an atlas from a saved surface model (unwrap_apply.h). */
 static void write_surface_model(json_writer *w, const struct neuv_unwrap_result *r)
 {
@@ -219,12 +231,7 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "seconds");
     json_begin_object(&w);
     json_key(&w, "load"); json_number(&w, load_seconds + r->seconds[STAGE_CLEAN]);
-    json_key(&w, "operators"); json_number(&w, r->seconds[STAGE_OPERATORS]);
-    json_key(&w, "patches"); json_number(&w, r->seconds[STAGE_PATCHES]);
-    json_key(&w, "param"); json_number(&w, r->seconds[STAGE_PARAM]);
-    json_key(&w, "repair"); json_number(&w, r->seconds[STAGE_REPAIR]);
-    json_key(&w, "pack"); json_number(&w, r->seconds[STAGE_PACK]);
-    json_key(&w, "metrics"); json_number(&w, r->seconds[STAGE_METRICS]);
+    write_stage_seconds(&w, r->seconds);
     json_key(&w, "export"); json_number(&w, export_seconds);
     json_key(&w, "total"); json_number(&w, load_seconds + r->total_seconds + export_seconds);
     if (r->model.trained_on_copy) { /* the stages above are the full mesh's; the copy's training here */
@@ -233,12 +240,7 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
         json_begin_object(&w);
         json_key(&w, "simplify"); json_number(&w, r->model.copy_simplify_seconds);
         json_key(&w, "clean"); json_number(&w, c[STAGE_CLEAN]);
-        json_key(&w, "operators"); json_number(&w, c[STAGE_OPERATORS]);
-        json_key(&w, "patches"); json_number(&w, c[STAGE_PATCHES]);
-        json_key(&w, "param"); json_number(&w, c[STAGE_PARAM]);
-        json_key(&w, "repair"); json_number(&w, c[STAGE_REPAIR]);
-        json_key(&w, "pack"); json_number(&w, c[STAGE_PACK]);
-        json_key(&w, "metrics"); json_number(&w, c[STAGE_METRICS]);
+        write_stage_seconds(&w, c);
         json_key(&w, "total"); json_number(&w, r->model.train_seconds);
         json_end_object(&w);
     }
