@@ -243,10 +243,67 @@ static void test_run_blocked(rng *r, int size)
     CHECK(blocked > 10000 && free_ > 10000); /* both answers were exercised inside the atlas */
 }
 
+/* 1 when triangle (a, b, c) meets the box [x0, x1] x [y0, y1]: no separating
+ * axis among the box's two and the triangle's three edge normals. */
+static int triangle_meets_box(const double *a, const double *b, const double *c, double x0, double x1, double y0,
+                              double y1)
+{
+    const double *v[3] = {a, b, c};
+    double box[4][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    if (fmax(a[0], fmax(b[0], c[0])) < x0 || fmin(a[0], fmin(b[0], c[0])) > x1) return 0;
+    if (fmax(a[1], fmax(b[1], c[1])) < y0 || fmin(a[1], fmin(b[1], c[1])) > y1) return 0;
+    for (int e = 0; e < 3; e++) {
+        const double *p = v[e], *q = v[(e + 1) % 3], *o = v[(e + 2) % 3];
+        double nx = q[1] - p[1], ny = p[0] - q[0];
+        double side = nx * (o[0] - p[0]) + ny * (o[1] - p[1]);
+        if (side == 0) continue; /* degenerate: the box axes decide */
+        int out = 1;
+        for (int k = 0; k < 4 && out; k++)
+            if ((nx * (box[k][0] - p[0]) + ny * (box[k][1] - p[1])) * side >= 0) out = 0;
+        if (out) return 0;
+    }
+    return 1;
+}
+
+/* Conservative rasterization against the plain per-pixel test: a pixel is
+ * set exactly where the triangle meets the pixel's square (grown by the
+ * rasterizer's 1e-7, so a test pixel within 1e-6 of the triangle's edge is
+ * not judged). Triangles from a thousandth of a pixel (inside one row, the
+ * rasterizer's short path) to several pixels across. */
+static void test_rasterize(rng *r)
+{
+    const int w = 12, h = 10;
+    int judged = 0, one_row = 0;
+    for (int t = 0; t < 3000; t++) {
+        double size = pow(10, -3 + 4 * rng_uniform(r)); /* 1e-3 .. 10 px */
+        double p[6], cx = 1 + rng_uniform(r) * (w - 2), cy = 1 + rng_uniform(r) * (h - 2);
+        for (int k = 0; k < 3; k++) {
+            p[2 * k] = fmin(fmax(cx + size * (rng_uniform(r) - 0.5), 0), w - 1e-3);
+            p[2 * k + 1] = fmin(fmax(cy + size * (rng_uniform(r) - 0.5), 0), h - 1e-3);
+        }
+        int tri[3] = {0, 1, 2};
+        footprint f;
+        CHECK(footprint_rasterize(p, tri, 1, w, h, &f) == 0);
+        one_row += floor(fmin(p[1], fmin(p[3], p[5])) - 1e-7) == floor(fmax(p[1], fmax(p[3], p[5])) + 1e-7);
+        for (int j = 0; j < h; j++)
+            for (int i = 0; i < w; i++) {
+                int in = triangle_meets_box(p, p + 2, p + 4, i - 1e-6, i + 1 + 1e-6, j - 1e-6, j + 1 + 1e-6);
+                int core = triangle_meets_box(p, p + 2, p + 4, i + 1e-6, i + 1 - 1e-6, j + 1e-6, j + 1 - 1e-6);
+                if (in != core) continue; /* within 1e-6 of the square's edge */
+                judged++;
+                CHECK_INT(f.bits[(size_t)j * w + i], in);
+            }
+        footprint_free(&f);
+    }
+    printf("rasterize: %d triangles, %d inside one row, %d pixels judged\n", 3000, one_row, judged);
+    CHECK(one_row > 500 && one_row < 2900);
+}
+
 int main(void)
 {
     rng r;
     rng_seed(&r, 7);
+    test_rasterize(&r);
     test_rotate_and_spans(&r);
     test_run_blocked(&r, 150);
     test_run_blocked(&r, 256);

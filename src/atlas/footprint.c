@@ -60,6 +60,18 @@ int footprint_rasterize(const double *p, const int *tri, int ntri, int w, int h,
         const double *a = p + 2 * tri[3 * t], *b = p + 2 * tri[3 * t + 1], *c = p + 2 * tri[3 * t + 2];
         double ymin = fmin(a[1], fmin(b[1], c[1])), ymax = fmax(a[1], fmax(b[1], c[1]));
         int j0 = (int)floor(ymin - raster_eps), j1 = (int)floor(ymax + raster_eps);
+        if (j0 == j1 && j0 >= 0 && j0 < h) {
+            /* Inside one row's slab, clear of its grown edges: slab_range
+             * would find every corner inside and no edge crossing, so the
+             * range is the corners' (most triangles of a large chart at a
+             * trial packing's scale are this small). */
+            double xlo = fmin(a[0], fmin(b[0], c[0])), xhi = fmax(a[0], fmax(b[0], c[0]));
+            int i0 = (int)floor(xlo - raster_eps), i1 = (int)floor(xhi + raster_eps);
+            if (i0 < 0) i0 = 0;
+            if (i1 > w - 1) i1 = w - 1;
+            if (i1 >= i0) memset(out->bits + (size_t)j0 * w + i0, 1, (size_t)(i1 - i0 + 1));
+            continue;
+        }
         if (j0 < 0) j0 = 0;
         if (j1 > h - 1) j1 = h - 1;
         for (int j = j0; j <= j1; j++) {
