@@ -5,6 +5,8 @@
  * chart's qce is unchanged (a similarity) and the output is deterministic. */
 #include "check.h"
 
+#include <omp.h>
+
 #include <stdint.h>
 
 #include "atlas/convex_hull.h"
@@ -373,6 +375,64 @@ static void test_split_for_packing(void)
     }
 }
 
+/* The splitting's trials run side by side, a round of as many as there are
+ * threads against the same atlas, taken in the one-by-one order up to the
+ * first kept cut: on 1, 2 and 3 threads the same cuts, trials and charts.
+ * Thin Ls (their cuts gain, at first), annuli (less convex than the
+ * rule's 0.8, tried) and rectangles (never tried) of several sizes, each chart's UVs its plane, give
+ * rounds where a trial is kept after rejected ones and where trials past
+ * a kept one are dropped; max_trials 7 (odd) ends a round part-way. */
+static void test_split_threads(void)
+{
+    static const int shapes[] = {3, 4, 0, 3, 3, 4, 0, 3, 4, 3, 0, 3}; /* 4: an annulus */
+    builder b = {0};
+    for (int c = 0; c < 12; c++) {
+        if (shapes[c] == 4) add_annulus_chart(&b, 24, 0.3 + 0.05 * c, 0.6 + 0.05 * c, 3.0 * c);
+        else add_grid_chart(&b, 12, 0.5 + 0.15 * c, 0.4 + 0.1 * (c % 5), 3.0 * c, shapes[c]);
+    }
+    for (int v = 0; v < b.nv; v++) { b.uv[2 * v] = b.pos[3 * v] + 2.0 * b.pos[3 * v + 2]; b.uv[2 * v + 1] = b.pos[3 * v + 1]; }
+    neuv_mesh *m = mesh_create(b.nv, b.nf, b.nv);
+    memcpy(m->pos, b.pos, sizeof(double) * 3 * b.nv);
+    memcpy(m->tri, b.tri, sizeof(int) * 3 * b.nf);
+    memcpy(m->uv, b.uv, sizeof(double) * 2 * b.nv);
+    memcpy(m->tri_uv, b.tri, sizeof(int) * 3 * b.nf);
+    free(b.pos); free(b.uv); free(b.tri);
+    int *fc0 = malloc(sizeof(int) * m->nf), nc0 = uv_charts(m, fc0);
+    pack_split_options so;
+    pack_split_default_options(&so);
+    so.max_trials = 7;
+    int *ref = NULL, ref_nc = 0, *ref_parent = NULL;
+    pack_split_report ref_rep = {0};
+    int saved = omp_get_max_threads();
+    for (int threads = 1; threads <= 3; threads++) {
+        omp_set_num_threads(threads);
+        int *fc = malloc(sizeof(int) * m->nf), nc = nc0, *parent = NULL;
+        memcpy(fc, fc0, sizeof(int) * m->nf);
+        pack_split_report rep;
+        CHECK_INT(pack_split_charts(m, fc, &nc, &so, &parent, &rep), NEUV_OK);
+        printf("split on %d threads: %d trials, %d splits, %d -> %d charts, quick packing %.4f -> %.4f\n", threads,
+               rep.trials, rep.splits, nc0, nc, rep.efficiency_before, rep.efficiency_after);
+        if (threads == 1) {
+            /* Something to compare: cuts kept and cuts rejected. */
+            CHECK_INT(rep.trials, 7);
+            CHECK(rep.splits >= 1 && rep.splits < rep.trials);
+            CHECK_INT(nc, nc0 + rep.splits);
+            ref = fc; ref_nc = nc; ref_parent = parent; ref_rep = rep;
+            continue;
+        }
+        CHECK_INT(nc, ref_nc);
+        CHECK_INT(rep.trials, ref_rep.trials);
+        CHECK_INT(rep.splits, ref_rep.splits);
+        CHECK(rep.efficiency_after == ref_rep.efficiency_after);
+        CHECK_INT(memcmp(fc, ref, sizeof(int) * m->nf), 0);
+        CHECK_INT(memcmp(parent, ref_parent, sizeof(int) * nc), 0);
+        free(fc); free(parent);
+    }
+    omp_set_num_threads(saved);
+    free(ref); free(ref_parent); free(fc0);
+    mesh_free(m);
+}
+
 /* Tile t of the layout (the unit square with corner (t mod 10, t div 10)),
  * its faces moved to [0,1]^2; the other faces left out. */
 static neuv_mesh *tile_submesh(const neuv_mesh *m, const int *face_tile, int t, const int *fc, int *fc_out)
@@ -508,6 +568,7 @@ int main(void)
     test_tiles();
     test_bad_input();
     test_split_for_packing();
+    test_split_threads();
     neuv_mesh *m = procedural_charts(42, 24);
     check_pack("procedural 24 charts, 256 px pad 2", m, 256, 2, 0.40);
     mesh_free(m);

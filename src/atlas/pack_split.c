@@ -2,6 +2,7 @@
 #include "atlas/pack_split.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -85,6 +86,26 @@ static neuv_status trial_pack(const neuv_mesh *m, const int *face_chart, int n_c
     return s;
 }
 
+/* One chart's trial cut: the atlas's charts with it cut, and their quick packing. */
+typedef struct split_trial {
+    int chart;
+    int skip;       /* fewer than two faces: passed over, no trial */
+    int *face_chart; /* #F, the charts with this one cut */
+    int n;          /* their count */
+    double eff;     /* their quick packing's efficiency */
+    neuv_status s;  /* NEUV_OK, or why the cut or its packing failed */
+} split_trial;
+
+/* Trial t against the atlas face_chart (n charts): the cut and its quick packing. */
+static void run_trial(const neuv_mesh *m, const int *face_chart, int n, const atlas_pack_options *po, split_trial *t)
+{
+    if (t->skip) return;
+    memcpy(t->face_chart, face_chart, sizeof(int) * (size_t)m->nf);
+    t->n = n;
+    t->s = charts_split(m, t->face_chart, &t->n, t->chart);
+    if (t->s == NEUV_OK) t->s = trial_pack(m, t->face_chart, t->n, po, &t->eff);
+}
+
 static int grow(int **a, int *cap, int need)
 {
     if (need <= *cap) return 0;
@@ -111,7 +132,13 @@ neuv_status pack_split_charts(const neuv_mesh *m, int *face_chart, int *n_charts
         return error_set(NEUV_ERR_INPUT, "splitting for packing needs a mesh with UVs and charts");
     double t0 = now_seconds();
     int n = *n_charts, cap = 0, *parent = NULL, *tried = NULL, tcap = 0;
-    int *trial = mem_alloc(sizeof(int) * (size_t)m->nf);
+    int width = omp_get_max_threads() > 1 ? omp_get_max_threads() : 1;
+    if (width > o.max_trials) width = o.max_trials > 0 ? o.max_trials : 1;
+    /* Picks for one round: up to `width` trials and the small charts passed
+     * over between them, each chart once (so at most as many as the charts). */
+    split_trial *pick = NULL;
+    int pick_cap = 0;
+    int *trial = mem_alloc(sizeof(int) * (size_t)m->nf * (size_t)width);
     double *cvx = NULL;
     neuv_status s = NEUV_OK;
     if (!trial || grow(&parent, &cap, n) || grow(&tried, &tcap, n)) { s = error_nomem("chart splitting"); goto done; }
@@ -132,40 +159,70 @@ neuv_status pack_split_charts(const neuv_mesh *m, int *face_chart, int *n_charts
             if ((s = chart_convexity(m, face_chart, n, cvx)) != NEUV_OK) break;
             cvx_charts = n;
         }
-        int worst = -1;
-        for (int c = 0; c < n; c++)
-            if (!tried[c] && cvx[c] < o.max_convexity && (worst < 0 || cvx[c] < cvx[worst])) worst = c;
-        if (worst < 0) break;
-        tried[worst] = 1;
-        int faces = 0;
-        for (int f = 0; f < m->nf; f++) faces += face_chart[f] == worst;
-        if (faces < 2) continue;
-        rep->trials++;
-        memcpy(trial, face_chart, sizeof(int) * (size_t)m->nf);
-        int n2 = n;
-        if ((s = charts_split(m, trial, &n2, worst)) != NEUV_OK) {
-            if (s == NEUV_ERR_NOMEM) break;
-            s = NEUV_OK;
-            continue;
+        /* The charts the one-by-one rule would try next if every trial were
+         * rejected: least convex first, then lowest id (a chart of fewer
+         * than two faces is passed over without a trial). Up to `width` of
+         * them are tried side by side against the same atlas; their results
+         * are then taken in that order, as one by one, up to the first kept
+         * cut, and the trials past it (made against an atlas that no longer
+         * stands) are dropped. So the cuts kept are those of the one-by-one
+         * rule on any number of threads. */
+        if (pick_cap < n) {
+            split_trial *p = mem_realloc(pick, sizeof *pick * (size_t)n);
+            if (!p) { s = error_nomem("chart splitting"); break; }
+            pick = p;
+            pick_cap = n;
         }
-        double e2;
-        if ((s = trial_pack(m, trial, n2, &o.pack, &e2)) != NEUV_OK) {
-            if (s == NEUV_ERR_NOMEM) break;
-            s = NEUV_OK;
-            continue;
+        int npick = 0, ntry = 0;
+        while (ntry < width && rep->trials + ntry < o.max_trials) {
+            int worst = -1;
+            for (int c = 0; c < n; c++)
+                if (!tried[c] && cvx[c] < o.max_convexity && (worst < 0 || cvx[c] < cvx[worst])) worst = c;
+            if (worst < 0) break;
+            tried[worst] = 1; /* for this pick only: set again below as the results are taken */
+            int faces = 0;
+            for (int f = 0; f < m->nf; f++) faces += face_chart[f] == worst;
+            pick[npick] = (split_trial){.chart = worst, .skip = faces < 2, .face_chart = trial + (size_t)m->nf * ntry};
+            ntry += faces >= 2;
+            npick++;
         }
-        log_progress("pack", 0, "split chart %d: packing %.3f -> %.3f", worst, eff, e2);
-        if (!(e2 >= eff * (1 + o.min_gain))) continue;
+        for (int i = 0; i < npick; i++) tried[pick[i].chart] = 0;
+        if (npick == 0) break;
+        /* One trial alone runs outside any parallel construct, so that its
+         * packing's own parallel loops get the threads (inside even a
+         * one-thread region they are nested, and slower than serial). */
+        if (ntry > 1) {
+#pragma omp parallel for schedule(dynamic, 1)
+            for (int i = 0; i < npick; i++) run_trial(m, face_chart, n, &o.pack, &pick[i]);
+        } else {
+            for (int i = 0; i < npick; i++) run_trial(m, face_chart, n, &o.pack, &pick[i]);
+        }
+        int kept = -1;
+        for (int i = 0; i < npick && kept < 0; i++) {
+            split_trial *t = &pick[i];
+            tried[t->chart] = 1;
+            if (t->skip) continue;
+            rep->trials++;
+            if (t->s == NEUV_ERR_NOMEM) { s = error_nomem("a trial packing"); break; } /* its message was the worker's */
+            if (t->s != NEUV_OK) continue; /* a cut charts_split refuses, or a packing that does not fit */
+            log_progress("pack", 0, "split chart %d: packing %.3f -> %.3f", t->chart, eff, t->eff);
+            if (t->eff >= eff * (1 + o.min_gain)) kept = i;
+        }
+        if (s != NEUV_OK) break;
+        if (kept < 0) continue;
+        split_trial *t = &pick[kept];
+        int worst = t->chart, n2 = t->n;
         if (grow(&parent, &cap, n2) || grow(&tried, &tcap, n2)) { s = error_nomem("chart splitting"); break; }
         for (int c = n; c < n2; c++) { parent[c] = parent[worst]; tried[c] = 0; }
         tried[worst] = 0; /* its remaining part may be worth another cut */
-        memcpy(face_chart, trial, sizeof(int) * (size_t)m->nf);
+        memcpy(face_chart, t->face_chart, sizeof(int) * (size_t)m->nf);
         n = n2;
-        eff = e2;
+        eff = t->eff;
         rep->splits++;
         rep->efficiency_after = eff;
     }
 done:
+    mem_free(pick);
     mem_free(trial);
     mem_free(tried);
     mem_free(cvx);

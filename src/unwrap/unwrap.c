@@ -532,6 +532,7 @@ static neuv_status split_for_packing(struct neuv_unwrap_result *r, const neuv_me
     if (s != NEUV_OK) { mem_free(parent); return s; }
     r->pack_splits = rep.splits;
     r->pack_split_trials = rep.trials;
+    r->pack_split_seconds = rep.seconds;
     if (r->n_charts > before && r->chart_source) {
         /* A piece keeps its parent's map, so its source; the qce figures are the parent's. */
         int *src = mem_realloc(r->chart_source, sizeof(int) * (size_t)r->n_charts);

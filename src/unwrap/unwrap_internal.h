@@ -56,6 +56,7 @@ struct neuv_unwrap_result {
     int refine_stopped;       /* charts whose refinement stopped early at the last injective map */
     int pack_splits;          /* charts cut so that the atlas packs better (atlas/pack_split.h) */
     int pack_split_trials;
+    double pack_split_seconds; /* the trials' wall seconds, within the pack stage's */
     atlas_chart_transform *transforms; /* n_charts */
     /* A model's apply keeping a model of this mesh (unwrap_apply_options.keep_heads):
      * each chart's transform from its network's frame to its UVs before the fresh

@@ -279,6 +279,7 @@ char *neuv_unwrap_report_json(const neuv_unwrap_result *r, const char *input_nam
     json_key(&w, "texels_per_unit"); json_number(&w, r->opts.texels_per_unit);
     json_key(&w, "split_charts"); json_int(&w, r->pack_splits);
     json_key(&w, "split_trials"); json_int(&w, r->pack_split_trials);
+    json_key(&w, "split_seconds"); json_number(&w, r->pack_split_seconds);
     json_end_object(&w);
 
     /* The tiles of the written atlas (one, 1001, without texels_per_unit). */
