@@ -50,6 +50,18 @@ static void add_face(builder *b, int i, int j, int k)
 
 /* An n by n grid of unit/n cells in the plane z = zc; cells where keep()
  * says no are left out (L and U shapes are concave). */
+/* The mesh the builder holds (each vertex its own UV corner), the builder's arrays freed. */
+static neuv_mesh *mesh_of_builder(builder *b)
+{
+    neuv_mesh *m = mesh_create(b->nv, b->nf, b->nv);
+    memcpy(m->pos, b->pos, sizeof(double) * 3 * b->nv);
+    memcpy(m->tri, b->tri, sizeof(int) * 3 * b->nf);
+    memcpy(m->uv, b->uv, sizeof(double) * 2 * b->nv);
+    memcpy(m->tri_uv, b->tri, sizeof(int) * 3 * b->nf);
+    free(b->pos); free(b->uv); free(b->tri);
+    return m;
+}
+
 static void add_grid_chart(builder *b, int n, double sx, double sy, double zc, int shape)
 {
     int base = b->nv;
@@ -108,13 +120,8 @@ static neuv_mesh *procedural_charts(uint64_t seed, int count)
             b.uv[2 * v + 1] = sc * (sin(ang) * x + cos(ang) * y) + oy;
         }
     }
-    neuv_mesh *m = mesh_create(b.nv, b.nf, b.nv);
-    memcpy(m->pos, b.pos, sizeof(double) * 3 * b.nv);
-    memcpy(m->tri, b.tri, sizeof(int) * 3 * b.nf);
-    memcpy(m->uv, b.uv, sizeof(double) * 2 * b.nv);
-    memcpy(m->tri_uv, b.tri, sizeof(int) * 3 * b.nf);
-    free(b.pos); free(b.uv); free(b.tri); free(chart_v0);
-    return m;
+    free(chart_v0);
+    return mesh_of_builder(&b);
 }
 
 /* ---- independent checks ---------------------------------------------- */
@@ -345,12 +352,7 @@ static void test_split_for_packing(void)
         builder b = {0};
         add_grid_chart(&b, 12, 1.0, 1.0, 0, shape);
         for (int v = 0; v < b.nv; v++) { b.uv[2 * v] = b.pos[3 * v]; b.uv[2 * v + 1] = b.pos[3 * v + 1]; }
-        neuv_mesh *m = mesh_create(b.nv, b.nf, b.nv);
-        memcpy(m->pos, b.pos, sizeof(double) * 3 * b.nv);
-        memcpy(m->tri, b.tri, sizeof(int) * 3 * b.nf);
-        memcpy(m->uv, b.uv, sizeof(double) * 2 * b.nv);
-        memcpy(m->tri_uv, b.tri, sizeof(int) * 3 * b.nf);
-        free(b.pos); free(b.uv); free(b.tri);
+        neuv_mesh *m = mesh_of_builder(&b);
         int *fc = calloc((size_t)m->nf, sizeof(int)), nc = 1, *parent = NULL;
         pack_split_report rep;
         double before = packed_efficiency(m, fc, 1);
@@ -391,12 +393,7 @@ static void test_split_threads(void)
         else add_grid_chart(&b, 12, 0.5 + 0.15 * c, 0.4 + 0.1 * (c % 5), 3.0 * c, shapes[c]);
     }
     for (int v = 0; v < b.nv; v++) { b.uv[2 * v] = b.pos[3 * v] + 2.0 * b.pos[3 * v + 2]; b.uv[2 * v + 1] = b.pos[3 * v + 1]; }
-    neuv_mesh *m = mesh_create(b.nv, b.nf, b.nv);
-    memcpy(m->pos, b.pos, sizeof(double) * 3 * b.nv);
-    memcpy(m->tri, b.tri, sizeof(int) * 3 * b.nf);
-    memcpy(m->uv, b.uv, sizeof(double) * 2 * b.nv);
-    memcpy(m->tri_uv, b.tri, sizeof(int) * 3 * b.nf);
-    free(b.pos); free(b.uv); free(b.tri);
+    neuv_mesh *m = mesh_of_builder(&b);
     int *fc0 = malloc(sizeof(int) * m->nf), nc0 = uv_charts(m, fc0);
     pack_split_options so;
     pack_split_default_options(&so);
