@@ -28,6 +28,7 @@ def strip_timings(report):
         r.pop(key)
     r["patches"].pop("iterations_per_second")
     r["param"].pop("refine_seconds", None)
+    r["pack"].pop("split_seconds", None)
     for key in ("train_seconds", "inference_seconds"):
         r.get("model", {}).pop(key, None)
     return r
