@@ -36,7 +36,7 @@ def run(neuv, mesh, extra, threads, out):
     stages["other"] = sec["total"] - sum(stages[k] for k in STAGES)
     stages["split"] = r["pack"].get("split_seconds", 0.0)
     return {"faces": r["faces"], "charts": r["charts"], "copy": (r.get("model") or {}).get("train_faces"),
-            "total": sec["total"], "stages": stages, "qce": r["metrics"]["qce_mean"]}
+            "total": sec["total"], "stages": stages}
 
 
 def main():
@@ -56,7 +56,6 @@ def main():
     else:
         print(f"bench_speed: no {folder}", file=sys.stderr)
         return 77
-    cols = STAGES + ["other"]
     shown = ["simplify", "operators", "patches", "param", "repair", "pack", "split", "metrics", "other"]
     title = {"split": "of which split trials s"}
     print("| mesh | faces | trained on | charts | " + " | ".join(title.get(c, f"{c} s") for c in shown) +
@@ -70,7 +69,7 @@ def main():
             for _ in range(a.runs):
                 d.append(run(a.neuv, mesh, [], a.threads, out))
                 l.append(run(a.neuv, mesh, ["--method", "lscm"], a.threads, out))
-            med = {c: statistics.median(x["stages"][c] for x in d) for c in cols + ["split"]}
+            med = {c: statistics.median(x["stages"][c] for x in d) for c in shown}
             total = statistics.median(x["total"] for x in d)
             lscm = statistics.median(x["total"] for x in l)
             first = d[0]
