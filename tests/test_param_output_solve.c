@@ -56,7 +56,7 @@ static void grid_build(neuv_mesh *g, int two, grid_data *gd)
     param_conformal_targets(pos, &gd->corners, gd->frame_inv, gd->w);
     gd->fchart = fchart;
     gd->d = (param_solve_data){n, nf, two ? 2 : 1, gd->x, gd->x, 3, gd->vchart, NULL, 0, 0, tri, fchart,
-                               gd->frame_inv, gd->w, 0, 0, NULL, 0, NULL, 0};
+                               gd->frame_inv, gd->w, 0, 0, NULL, 0, NULL, 0, 0};
     free(map); free(pos);
 }
 
@@ -257,6 +257,63 @@ int main(void)
         CHECK(param_output_solve_dual_error(&f, &sd.d, 0) == INFINITY); /* no anchor: refused */
         grid_free(&sd);
         mesh_free(small);
+    }
+
+    /* A chart of more vertices than features takes its heads' steps in the
+     * span its features have (the reduced system): the map of the
+     * feature-space step, but for the directions left out. Unit 1 of the
+     * first hidden layer is made a copy of unit 0, so the span is smaller
+     * than the 49 features whatever the random weights. */
+    {
+        param_mlp fd;
+        rng rd;
+        rng_seed(&rd, 11);
+        CHECK_INT(param_mlp_create(&fd, 3, 0, 24, 2, 3, 0.01f, &rd, &ps, "fd"), NEUV_OK);
+        for (int i = 0; i < 3; i++) fd.w_x->data[i * 24 + 1] = fd.w_x->data[i * 24];
+        fd.b0->data[1] = fd.b0->data[0];
+        int rank = 0, rank_b = 0, rank_c = 0;
+        double e0 = param_output_solve_reduced_error(&fd, &one.d, 1e-3, PARAM_SOLVE_RANK_TOL, &rank);
+        one.d.fold_weight = 10;
+        one.d.fold_eps = 3;
+        double e1 = param_output_solve_reduced_error(&fd, &one.d, 1e-3, PARAM_SOLVE_RANK_TOL, &rank_b);
+        one.d.fold_weight = 0;
+        one.d.fold_eps = 0;
+        /* a tolerance that leaves out directions the step uses: another map */
+        double ec = param_output_solve_reduced_error(&fd, &one.d, 1e-3, 0.05, &rank_c);
+        printf("reduced step vs feature-space step: %.3g, %.3g with the fold barrier (span %d of 49); "
+               "%.3g with rank_tol 0.05 (span %d)\n", e0, e1, rank, ec, rank_c);
+        CHECK(rank >= 30 && rank <= 48);
+        CHECK_INT(rank_b, rank);
+        CHECK(e0 < 1e-6); /* measured 7.5e-8 and 5.1e-7 */
+        CHECK(e1 < 1e-5);
+        CHECK(rank_c < rank);
+        CHECK(ec > 1e-3);
+        CHECK(param_output_solve_reduced_error(&fd, &one.d, 0, PARAM_SOLVE_RANK_TOL, &rank) == INFINITY); /* no anchor */
+
+        /* The heads on two charts, reduced (the default) and in feature space,
+         * with the barrier and the scale-free steps: the same map. */
+        int hs = param_head_size(&fd);
+        float *hr = malloc(sizeof(float) * 2 * (size_t)hs), *hf = malloc(sizeof(float) * 2 * (size_t)hs);
+        param_solve_report rr, rf;
+        two.d.fold_weight = 1e4;
+        two.d.fold_eps = 0.05;
+        two.d.mips_steps = 20;
+        CHECK_INT(param_output_solve_heads(&fd, &two.d, 1e-3, 20, hr, &rr), NEUV_OK);
+        two.d.rank_tol = -1;
+        CHECK_INT(param_output_solve_heads(&fd, &two.d, 1e-3, 20, hf, &rf), NEUV_OK);
+        two.d.rank_tol = 0;
+        two.d.fold_weight = 0;
+        two.d.fold_eps = 0;
+        two.d.mips_steps = 0;
+        int flr = 0, flf = 0;
+        double qr = map_qce(&fd, hr, &two, &flr), qf = map_qce(&fd, hf, &two, &flf);
+        printf("heads, reduced: qce %.6f, energy %.6g, %d steps; feature space: qce %.6f, energy %.6g, %d steps\n", qr,
+               rr.energy_after, rr.steps, qf, rf.energy_after, rf.steps);
+        CHECK_INT(flr, flf);
+        CHECK(rr.steps >= 2);
+        CHECK(rr.energy_after < rr.energy_before);
+        CHECK(fabs(qr - qf) < 1e-4 * qf);
+        free(hr); free(hf);
     }
 
     /* Per-chart heads on two charts start from the shared layer: never worse, no new flip. */

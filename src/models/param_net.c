@@ -916,7 +916,7 @@ neuv_status param_net_flatten(const neuv_mesh *m, const int *face_chart, int n_c
     ctx = NULL;
     if (o->solve_steps > 0 && o->depth >= 2) {
         param_solve_data sd = {d.nv, d.nf, n_charts, d.x, d.x, 3, d.vchart, pooled ? d.psi : d.feat, d.psi_dim,
-                               !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w, 0, 0, NULL, 0, NULL, 0};
+                               !pooled, d.tri, d.fchart, d.frame_inv, d.conf_w, 0, 0, NULL, 0, NULL, 0, 0};
         param_solve_report sr, hr;
         memset(&hr, 0, sizeof hr);
         s = param_output_solve_conformal(&model->f, &sd, o->solve_anchor, o->solve_steps, &sr);
@@ -984,7 +984,7 @@ static neuv_status solve_new_heads(const param_net_model *model, const train_dat
                                    float *heads)
 {
     param_solve_data sd = {d->nv, d->nf, d->n_charts, d->x, d->x, 3, d->vchart, d->psi, d->psi_dim, 0, d->tri,
-                           d->fchart, d->frame_inv, d->conf_w, o->solve_fold, o->solve_fold_eps, NULL, o->solve_mips, NULL, 0};
+                           d->fchart, d->frame_inv, d->conf_w, o->solve_fold, o->solve_fold_eps, NULL, o->solve_mips, NULL, 0, 0};
     param_solve_subdivided sub;
     memset(&sub, 0, sizeof sub);
     neuv_status s = NEUV_OK;

@@ -172,7 +172,7 @@ static neuv_status solve_head(const param_net_model *model, int chart_id, const 
         param_conformal_targets(xn, &corners, frame_inv, face_w);
         param_solve_data d = {nv, nf, 1, x, x, 3, vchart, model->psi + (size_t)chart_id * model->psi_dim,
                               model->psi_dim, 0, chart->tri, fchart, frame_inv, face_w, o.solve_fold,
-                              o.solve_fold_eps, NULL, o.solve_mips, NULL, 0};
+                              o.solve_fold_eps, NULL, o.solve_mips, NULL, 0, 0};
         if (o.solve_subdivide && o.solve_fold > 0 &&
             (s = param_solve_subdivide(&d, between ? o.solve_subdivide_energy : 0, param_net_dense_vertices(&model->f, &o),
                                        &sub)) == NEUV_OK)

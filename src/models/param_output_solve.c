@@ -276,11 +276,28 @@ static void vertex_eq_vertex_row(vertex_eq *e, int v, int comp, double a, double
     else { e->mvv[p] += a * a; e->hv[v] += a * c; }
 }
 
-/* The normal equations (A upper triangle, g) of the block from the sums over
- * its vertices, VERTEX_EQ_CHUNK vertices at a time; phi is nv by K - 1. */
-static void vertex_eq_flush(const vertex_eq *e, const float *phi, const int *verts, int n, normal_eq *q)
+/* The features a system is built over: each vertex's row of `phi` (H
+ * numbers; the row of local[v] when `local` is set), with a constant 1
+ * appended when `one`, so K = H + one numbers. */
+typedef struct feature_rows {
+    const float *phi;
+    int H, one;
+    const int *local;
+} feature_rows;
+
+static const float *feature_row(const feature_rows *fr, int v)
 {
-    int K = e->K, H = K - 1, N = q->n;
+    return fr->phi + (size_t)(fr->local ? fr->local[v] : v) * fr->H;
+}
+
+/* The normal equations (A upper triangle, g) of the block from the sums over
+ * its vertices, VERTEX_EQ_CHUNK vertices at a time, over the features fr.
+ * hz (NULL, or 2 numbers per block vertex, in the order of verts) replaces
+ * the sums' hu, hv. */
+static void vertex_eq_flush(const vertex_eq *e, const feature_rows *fr, const double *hz, const int *verts, int n,
+                            normal_eq *q)
+{
+    int H = fr->H, K = H + fr->one, N = q->n;
     memset(q->a, 0, sizeof(double) * (size_t)N * N);
     memset(q->g, 0, sizeof(double) * (size_t)N);
     double *C = q->scratch, *hc = q->hc;
@@ -291,29 +308,29 @@ static void vertex_eq_flush(const vertex_eq *e, const float *phi, const int *ver
     for (int k = 0; k < n;) {
         int m = 0;
         for (; k < n && m < VERTEX_EQ_CHUNK; k++) {
-            int v = verts[k], used = e->hu[v] != 0 || e->hv[v] != 0;
+            int v = verts[k], used = hz ? hz[2 * k] != 0 || hz[2 * k + 1] != 0 : e->hu[v] != 0 || e->hv[v] != 0;
             for (int p = e->start[v]; p < e->start[v + 1] && !used; p++)
                 used = e->muu[p] != 0 || e->muv[p] != 0 || e->mvv[p] != 0;
-            if (used) chunk[m++] = v;
+            if (used) chunk[m++] = k;
         }
         if (m == 0) break;
         for (int r = 0; r < m; r++) {
-            int v = chunk[r];
+            int v = verts[chunk[r]];
             double *c = C + (size_t)r * K, *pu = Puu + (size_t)r * K, *pm = Puv + (size_t)r * K, *pv = Pvv + (size_t)r * K;
-            const float *fv = phi + (size_t)v * H;
+            const float *fv = feature_row(fr, v);
             for (int i = 0; i < H; i++) c[i] = fv[i];
-            c[H] = 1;
+            if (fr->one) c[H] = 1;
             memset(pu, 0, sizeof(double) * (size_t)K);
             memset(pm, 0, sizeof(double) * (size_t)K);
             memset(pv, 0, sizeof(double) * (size_t)K);
             for (int p = e->start[v]; p < e->start[v + 1]; p++) {
-                const float *fw = phi + (size_t)e->col[p] * H;
+                const float *fw = feature_row(fr, e->col[p]);
                 double wu = e->muu[p], wm = e->muv[p], wv = e->mvv[p];
                 for (int i = 0; i < H; i++) { pu[i] += wu * fw[i]; pm[i] += wm * fw[i]; pv[i] += wv * fw[i]; }
-                pu[H] += wu; pm[H] += wm; pv[H] += wv;
+                if (fr->one) { pu[H] += wu; pm[H] += wm; pv[H] += wv; }
             }
-            hc[r] = e->hu[v];
-            hc[VERTEX_EQ_CHUNK + r] = e->hv[v];
+            hc[r] = hz ? hz[2 * chunk[r]] : e->hu[v];
+            hc[VERTEX_EQ_CHUNK + r] = hz ? hz[2 * chunk[r] + 1] : e->hv[v];
         }
         /* The three blocks of A are three independent products, each the
          * same single-threaded call on whichever thread runs it (the same
@@ -758,14 +775,186 @@ static int dual_eq_solve(dual_eq *q, const vertex_eq *e, const block *b, double 
     return 0;
 }
 
+/* The Gauss-Newton step of a block with more vertices than features, in the
+ * span its features have. A chart's K features are far from independent on
+ * its vertices (the hidden layers' units and the Fourier terms repeat one
+ * another: on spot's charts Φ̂ has 130-250 singular values above 1e-6 of
+ * the largest, of K = 420), and the feature-space system costs 6 V K² per
+ * step to build. With G = Φ̂ᵀ Φ̂ = W Λ Wᵀ, B = W_r Λ_r^(-1/2) over the r
+ * eigenvalues above rank_tol² of the largest and Ψ = Φ̂ B (V by r,
+ * orthonormal columns), each step takes θ = θ_b + B y (θ_b the descent's
+ * start; per component u, v) and solves the quadratic the feature-space
+ * step minimizes, ½ θᵀAθ + θᵀΦ̂ᵀh + ½ λ|θ|², A = Φ̂ᵀ M Φ̂, for y:
+ * (Ψᵀ M Ψ + λ Λ_r⁻¹) y = −Ψᵀ (h + M z_b) − λ Bᵀ θ_b, z_b = Φ̂ θ_b, at
+ * 6 V r² for the products. λ is normal_eq_solve's ridge, 1e-9 tr(A) / 2K,
+ * with tr(A) = Σ M_vw φ̂_v·φ̂_w. The directions left out (σ below rank_tol
+ * of the largest) keep θ_b's weights; in the feature-space step their
+ * curvature is below the ridge's. */
+typedef struct reduced_eq {
+    int V, K, r;
+    int *local;        /* the state's nv entries: a block vertex's index, else -1 (owned by the state) */
+    float *psi;        /* V by r: Ψ */
+    double *basis;     /* K by r: B */
+    double *lam_inv;   /* r: Λ_r⁻¹ = diag(BᵀB) */
+    double *dots;      /* φ̂_v·φ̂_w for the block's entries of the sums, vertex by vertex */
+    int *dstart;       /* V + 1: each block vertex's first entry in dots */
+    double *zb, *hz;   /* V by 2: z_b; h + M z_b */
+    double *thb, *bt;  /* 2K: θ_b; 2r: Bᵀ θ_b per component */
+    normal_eq q;       /* 2r */
+} reduced_eq;
+
+static void reduced_eq_free(reduced_eq *q, const block *b)
+{
+    if (q->local && b)
+        for (int k = 0; k < b->nv; k++) q->local[b->verts[k]] = -1;
+    mem_free(q->psi); mem_free(q->basis); mem_free(q->lam_inv); mem_free(q->dots); mem_free(q->dstart);
+    mem_free(q->zb); mem_free(q->hz); mem_free(q->thb); mem_free(q->bt);
+    normal_eq_free(&q->q);
+    memset(q, 0, sizeof *q);
+}
+
+enum { REDUCED_CHUNK = 256 };
+
+/* The block's reduced basis. Returns 1 when it has fewer directions than
+ * features (the system is then this one), 0 when not (q is empty), -1 on
+ * allocation failure. */
+static int reduced_eq_init(reduced_eq *q, const solve_state *st, const block *b, double rank_tol)
+{
+    memset(q, 0, sizeof *q);
+    int H = st->H, K = H + 1, V = b->nv, ret = -1;
+    double *G = mem_calloc((size_t)K * K, sizeof(double)), *w = mem_alloc(sizeof(double) * (size_t)K);
+    double *C = mem_alloc(sizeof(double) * REDUCED_CHUNK * (size_t)K), *Y = NULL;
+    if (!G || !w || !C) goto out;
+    for (int k0 = 0; k0 < V; k0 += REDUCED_CHUNK) {
+        int m = V - k0 < REDUCED_CHUNK ? V - k0 : REDUCED_CHUNK;
+        for (int r = 0; r < m; r++) {
+            const float *p = st->phi + (size_t)b->verts[k0 + r] * H;
+            for (int i = 0; i < H; i++) C[(size_t)r * K + i] = p[i];
+            C[(size_t)r * K + H] = 1;
+        }
+        cblas_dsyrk(CblasRowMajor, CblasUpper, CblasTrans, K, m, 1.0, C, K, 1.0, G, K);
+    }
+    if (LAPACKE_dsyevd(LAPACK_ROW_MAJOR, 'V', 'U', K, G, K, w) != 0) { ret = 0; goto out; }
+    /* eigenvalues ascending, eigenvector j in column j */
+    double cut = rank_tol * rank_tol * w[K - 1];
+    int r = 0;
+    for (int j = 0; j < K; j++) r += w[j] > cut && w[j] > 0;
+    if (r == 0 || r >= K) { ret = 0; goto out; }
+    q->V = V; q->K = K; q->r = r;
+    q->local = st->local;
+    q->psi = mem_alloc(sizeof(float) * (size_t)V * r);
+    q->basis = mem_alloc(sizeof(double) * (size_t)K * r);
+    q->lam_inv = mem_alloc(sizeof(double) * (size_t)r);
+    q->dstart = mem_alloc(sizeof(int) * ((size_t)V + 1));
+    q->zb = mem_alloc(sizeof(double) * 2 * (size_t)V);
+    q->hz = mem_alloc(sizeof(double) * 2 * (size_t)V);
+    q->thb = mem_alloc(sizeof(double) * 2 * (size_t)K);
+    q->bt = mem_alloc(sizeof(double) * 2 * (size_t)r);
+    Y = mem_alloc(sizeof(double) * REDUCED_CHUNK * (size_t)r);
+    if (!q->psi || !q->basis || !q->lam_inv || !q->dstart || !q->zb || !q->hz || !q->thb || !q->bt || !Y ||
+        normal_eq_init(&q->q, 2 * r, 0) != NEUV_OK)
+        goto out;
+    for (int j = K - r, c = 0; j < K; j++, c++) {
+        q->lam_inv[c] = 1 / w[j];
+        double s = 1 / sqrt(w[j]);
+        for (int i = 0; i < K; i++) q->basis[(size_t)i * r + c] = G[(size_t)i * K + j] * s;
+    }
+    for (int k0 = 0; k0 < V; k0 += REDUCED_CHUNK) {
+        int m = V - k0 < REDUCED_CHUNK ? V - k0 : REDUCED_CHUNK;
+        for (int k = 0; k < m; k++) {
+            const float *p = st->phi + (size_t)b->verts[k0 + k] * H;
+            for (int i = 0; i < H; i++) C[(size_t)k * K + i] = p[i];
+            C[(size_t)k * K + H] = 1;
+        }
+        cblas_dgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, m, r, K, 1.0, C, K, q->basis, r, 0.0, Y, r);
+        for (size_t i = 0; i < (size_t)m * r; i++) q->psi[(size_t)k0 * r + i] = (float)Y[i];
+    }
+    for (int k = 0; k < V; k++) q->local[b->verts[k]] = k;
+    const vertex_eq *e = &st->eq;
+    q->dstart[0] = 0;
+    for (int k = 0; k < V; k++) {
+        int v = b->verts[k];
+        q->dstart[k + 1] = q->dstart[k] + (e->start[v + 1] - e->start[v]);
+    }
+    q->dots = mem_alloc(sizeof(double) * ((size_t)q->dstart[V] + 1));
+    if (!q->dots) goto out;
+    for (int k = 0; k < V; k++) {
+        int v = b->verts[k];
+        const float *pv = st->phi + (size_t)v * H;
+        for (int p = e->start[v]; p < e->start[v + 1]; p++) {
+            const float *pw = st->phi + (size_t)e->col[p] * H;
+            double dot = 1;
+            for (int i = 0; i < H; i++) dot += (double)pv[i] * pw[i];
+            q->dots[q->dstart[k] + p - e->start[v]] = dot;
+        }
+    }
+    ret = 1;
+out:
+    mem_free(G); mem_free(w); mem_free(C); mem_free(Y);
+    if (ret != 1) reduced_eq_free(q, ret < 0 ? b : NULL);
+    return ret;
+}
+
+/* The descent's start θ_b, with z at it (the state's z on the block). */
+static void reduced_eq_start(reduced_eq *q, const block *b, const double *theta, const double *z)
+{
+    int K = q->K, r = q->r;
+    memcpy(q->thb, theta, sizeof(double) * 2 * (size_t)K);
+    for (int k = 0; k < b->nv; k++) {
+        q->zb[2 * k] = z[2 * b->verts[k]];
+        q->zb[2 * k + 1] = z[2 * b->verts[k] + 1];
+    }
+    for (int j = 0; j < 2; j++)
+        cblas_dgemv(CblasRowMajor, CblasTrans, K, r, 1.0, q->basis, r, theta + (size_t)j * K, 1, 0.0, q->bt + (size_t)j * r, 1);
+}
+
+/* The step's θ (2K numbers) from the block's sums; 0, or -1 when the system is not positive definite. */
+static int reduced_eq_solve(reduced_eq *q, const vertex_eq *e, const block *b, double *theta)
+{
+    int V = q->V, K = q->K, r = q->r, n = 2 * r;
+    double tr = 0;
+    for (int k = 0; k < V; k++) {
+        int v = b->verts[k];
+        q->hz[2 * k] = e->hu[v];
+        q->hz[2 * k + 1] = e->hv[v];
+    }
+    for (int k = 0; k < V; k++) {
+        int v = b->verts[k];
+        const double *dot = q->dots + q->dstart[k] - e->start[v];
+        for (int p = e->start[v]; p < e->start[v + 1]; p++) {
+            int l = q->local[e->col[p]];
+            if (l < 0) continue; /* not the block's (a block is whole charts) */
+            tr += (e->muu[p] + e->mvv[p]) * dot[p];
+            q->hz[2 * k] += e->muu[p] * q->zb[2 * l] + e->muv[p] * q->zb[2 * l + 1];
+            q->hz[2 * k + 1] += e->mvv[p] * q->zb[2 * l + 1];
+            q->hz[2 * l + 1] += e->muv[p] * q->zb[2 * k];
+        }
+    }
+    double ridge = 1e-9 * (tr > 0 ? tr / (2 * K) : 1) + 1e-300;
+    vertex_eq_flush(e, &(feature_rows){q->psi, r, 0, q->local}, q->hz, b->verts, V, &q->q);
+    for (int j = 0; j < 2; j++)
+        for (int c = 0; c < r; c++) {
+            q->q.a[(size_t)(j * r + c) * n + j * r + c] += ridge * q->lam_inv[c];
+            q->q.g[j * r + c] -= ridge * q->bt[j * r + c];
+        }
+    if (LAPACKE_dposv(LAPACK_ROW_MAJOR, 'U', n, 1, q->q.a, n, q->q.g, 1) != 0) return -1;
+    for (int j = 0; j < 2; j++) {
+        memcpy(theta + (size_t)j * K, q->thb + (size_t)j * K, sizeof(double) * (size_t)K);
+        cblas_dgemv(CblasRowMajor, CblasNoTrans, K, r, 1.0, q->basis, r, q->q.g + (size_t)j * r, 1, 1.0, theta + (size_t)j * K, 1);
+    }
+    return 0;
+}
+
 /* Gauss-Newton on theta for one block and objective, from the state's z/uv
  * at theta. A step is halved until the objective falls. The result is the
  * iterate chosen by `keep` among the start and the steps: without the fold
  * barrier the lowest objective with no more flips than the start; with it,
  * the fewest flips, then the lowest objective (the scale-free objective
- * never flips a face). Returns the steps up to that iterate, or -1 on
- * allocation failure; *flips_out: that iterate's folded faces. */
-static int descend(solve_state *st, const block *b, int mips, double anchor, int steps, double *theta, int *flips_out)
+ * never flips a face). rq: the block's reduced system (NULL: the feature-space
+ * one). Returns the steps up to that iterate, or -1 on allocation failure;
+ * *flips_out: that iterate's folded faces. */
+static int descend(solve_state *st, const block *b, reduced_eq *rq, int mips, double anchor, int steps, double *theta,
+                   int *flips_out)
 {
     const param_solve_data *d = st->d;
     int H = st->H, n = 2 * (H + 1), flips0, taken = 0, best_step = 0;
@@ -776,26 +965,31 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
     int flips_start = flips0, fewest = !mips && d->fold_weight > 0;
     /* One system's buffers for every step (a fresh n² matrix per step costs
      * more than the solve on a small chart: page faults). A block with fewer
-     * vertices than features is solved in vertex space (dual_eq). */
+     * vertices than features is solved in vertex space (dual_eq), one with
+     * more in its features' span when rq is given (reduced_eq). */
     normal_eq q;
     dual_eq dq;
     memset(&q, 0, sizeof q);
     memset(&dq, 0, sizeof dq);
-    int dual = b->nv < H + 1;
-    double *sol = dual ? mem_alloc(sizeof(double) * (size_t)n) : NULL;
-    if (dual ? !sol || dual_eq_init(&dq, st->local, st->phi, H, b) != NEUV_OK : normal_eq_init(&q, n, 0) != NEUV_OK) {
+    int dual = b->nv < H + 1, reduced = !dual && rq;
+    if (reduced) reduced_eq_start(rq, b, theta, st->z);
+    double *sol = dual || reduced ? mem_alloc(sizeof(double) * (size_t)n) : NULL;
+    if (dual ? !sol || dual_eq_init(&dq, st->local, st->phi, H, b) != NEUV_OK
+             : reduced ? !sol : normal_eq_init(&q, n, 0) != NEUV_OK) {
         mem_free(sol); mem_free(trial); mem_free(best);
         return -1;
     }
-    if (!dual) sol = q.g;
+    if (!dual && !reduced) sol = q.g;
     for (int step = 0; step < steps; step++) {
         vertex_eq_reset(&st->eq, b->verts, b->nv);
         if (mips) mips_rows(d, b, st->z, st->uv, st->uv0, st->mv, st->sigma, anchor, &st->eq);
         else gauss_newton_rows(d, b, st->z, st->uv, st->uv0, st->mv, st->sigma, st->fold_s2, anchor, &st->eq);
         if (dual) {
             if (dual_eq_solve(&dq, &st->eq, b, sol) != 0) break;
+        } else if (reduced) {
+            if (reduced_eq_solve(rq, &st->eq, b, sol) != 0) break;
         } else {
-            vertex_eq_flush(&st->eq, st->phi, b->verts, b->nv, &q);
+            vertex_eq_flush(&st->eq, &(feature_rows){st->phi, H, 1, NULL}, NULL, b->verts, b->nv, &q);
             if (normal_eq_solve(&q, 0, NULL) != 0) break;
         }
         int kept = 0, fl = 0;
@@ -823,6 +1017,7 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
     }
     normal_eq_free(&q);
     if (dual) { dual_eq_free(&dq, b); mem_free(sol); }
+    if (reduced) mem_free(sol);
     if (best_step != taken) { /* back to the best valid iterate */
         memcpy(theta, best, sizeof(double) * (size_t)n);
         map_block(st->phi, H, theta, b, st->z, st->uv);
@@ -833,13 +1028,27 @@ static int descend(solve_state *st, const block *b, int mips, double anchor, int
 }
 
 /* The conformal descent, then, when d->mips_steps > 0 and the map is
- * injective on the block, the scale-free one. Returns the steps kept or -1. */
+ * injective on the block, the scale-free one, both over one reduced system
+ * when the block's features span fewer directions than they number (unless
+ * d->rank_tol < 0). Returns the steps kept or -1. */
 static int solve_block(solve_state *st, const block *b, double anchor, int steps, double *theta)
 {
-    int flips, taken = descend(st, b, 0, anchor, steps, theta, &flips);
-    if (taken < 0 || st->d->mips_steps <= 0 || flips > 0) return taken;
-    int more = descend(st, b, 1, anchor, st->d->mips_steps, theta, NULL);
-    return more < 0 ? -1 : taken + more;
+    const param_solve_data *d = st->d;
+    reduced_eq rq;
+    int reduced = 0;
+    memset(&rq, 0, sizeof rq);
+    if (b->nv >= st->H + 1 && !(d->rank_tol < 0) && steps > 0) {
+        reduced = reduced_eq_init(&rq, st, b, d->rank_tol > 0 ? d->rank_tol : PARAM_SOLVE_RANK_TOL);
+        if (reduced < 0) return -1;
+    }
+    reduced_eq *r = reduced ? &rq : NULL;
+    int flips, taken = descend(st, b, r, 0, anchor, steps, theta, &flips);
+    if (taken >= 0 && d->mips_steps > 0 && flips == 0) {
+        int more = descend(st, b, r, 1, anchor, d->mips_steps, theta, NULL);
+        taken = more < 0 ? -1 : taken + more;
+    }
+    if (reduced) reduced_eq_free(&rq, b);
+    return taken;
 }
 
 static void theta_from_layer(const nn_linear *l, int H, double *theta)
@@ -1225,7 +1434,7 @@ double param_output_solve_gradient_error(const param_mlp *f, const param_solve_d
     vertex_eq_reset(&st.eq, all.verts, all.nv);
     if (mips) mips_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &st.eq);
     else gauss_newton_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &st.eq);
-    vertex_eq_flush(&st.eq, st.phi, all.verts, all.nv, &q);
+    vertex_eq_flush(&st.eq, &(feature_rows){st.phi, H, 1, NULL}, NULL, all.verts, all.nv, &q);
     /* The linearization is exact at θ: ∇E = 2 (A θ − g), A symmetric (upper triangle stored). */
     cblas_dsymv(CblasRowMajor, CblasUpper, n, 2.0, q.a, n, theta, 1, 0.0, grad, 1);
     for (int i = 0; i < n; i++) grad[i] -= 2 * q.g[i];
@@ -1273,7 +1482,7 @@ double param_output_solve_dual_error(const param_mlp *f, const param_solve_data 
     if (d->mips_steps > 0) mips_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &st.eq);
     else gauss_newton_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &st.eq);
     if (dual_eq_solve(&dq, &st.eq, &all, dual) == 0) {
-        vertex_eq_flush(&st.eq, st.phi, all.verts, all.nv, &q);
+        vertex_eq_flush(&st.eq, &(feature_rows){st.phi, H, 1, NULL}, NULL, all.verts, all.nv, &q);
         if (normal_eq_solve(&q, 0, NULL) == 0) {
             double scale = 0, diff = 0;
             for (int i = 0; i < n; i++) {
@@ -1288,6 +1497,63 @@ double param_output_solve_dual_error(const param_mlp *f, const param_solve_data 
 out:
     normal_eq_free(&q);
     mem_free(theta); mem_free(dual);
+    return worst;
+}
+
+double param_output_solve_reduced_error(const param_mlp *f, const param_solve_data *d, double anchor, double rank_tol,
+                                       int *rank)
+{
+    if (rank) *rank = 0;
+    if (check_f(f, anchor) != NEUV_OK || param_mlp_head_width(f) <= 0) return INFINITY;
+    int W = f->width, H = param_mlp_head_width(f), K = H + 1, n = 2 * K;
+    double *theta = mem_calloc((size_t)n, sizeof(double)), *full = mem_alloc(sizeof(double) * (size_t)n);
+    double *red = mem_alloc(sizeof(double) * (size_t)n), *last = mem_alloc(sizeof(double) * 2 * (size_t)(W + 1));
+    solve_state st;
+    normal_eq q = {0};
+    reduced_eq rq = {0};
+    double worst = INFINITY;
+    block all = {0};
+    int got = 0;
+    if (!theta || !full || !red || !last) goto out;
+    theta_from_layer(&f->rest[f->depth - 2], W, last); /* the heads' start: the shared layer */
+    for (int j = 0; j < 2; j++) {
+        for (int i = 0; i < W; i++) theta[(size_t)j * K + H - W + i] = last[(size_t)j * (W + 1) + i];
+        theta[(size_t)j * K + H] = last[(size_t)j * (W + 1) + W];
+    }
+    if (solve_state_init(&st, f, d, anchor, 1, theta) != NEUV_OK) { solve_state_free(&st); goto out; }
+    all = (block){st.all_faces, st.all_verts, d->nf, d->nv};
+    got = normal_eq_init(&q, n, 0) == NEUV_OK ? reduced_eq_init(&rq, &st, &all, rank_tol) : -1;
+    if (got == 1) {
+        if (rank) *rank = rq.r;
+        reduced_eq_start(&rq, &all, theta, st.z);
+        vertex_eq_reset(&st.eq, all.verts, all.nv);
+        if (d->mips_steps > 0) mips_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, anchor, &st.eq);
+        else gauss_newton_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &st.eq);
+        vertex_eq_flush(&st.eq, &(feature_rows){st.phi, H, 1, NULL}, NULL, all.verts, all.nv, &q);
+        if (normal_eq_solve(&q, 0, NULL) == 0 && reduced_eq_solve(&rq, &st.eq, &all, red) == 0) {
+            memcpy(full, q.g, sizeof(double) * (size_t)n);
+            /* Both steps' maps (pre-tanh) at the vertices, against the
+             * start's: the full step's in the trial buffers, the reduced
+             * one's over the start's once it is kept. */
+            double *z0 = mem_alloc(sizeof(double) * 2 * (size_t)d->nv), step = 0, diff = 0;
+            if (z0) {
+                memcpy(z0, st.z, sizeof(double) * 2 * (size_t)d->nv);
+                map_block(st.phi, H, full, &all, st.tz, st.tuv);
+                map_block(st.phi, H, red, &all, st.z, st.uv);
+                for (int i = 0; i < 2 * d->nv; i++) {
+                    step = fmax(step, fabs(st.tz[i] - z0[i]));
+                    diff = fmax(diff, fabs(st.tz[i] - st.z[i]));
+                }
+                worst = diff / (step > 0 ? step : 1);
+                mem_free(z0);
+            }
+        }
+    }
+    if (got == 1) reduced_eq_free(&rq, &all);
+    solve_state_free(&st);
+out:
+    normal_eq_free(&q);
+    mem_free(theta); mem_free(full); mem_free(red); mem_free(last);
     return worst;
 }
 

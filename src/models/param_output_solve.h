@@ -67,7 +67,13 @@ typedef struct param_solve_data {
      * fewer faces (NULL: no second start). */
     const float *fit_uv;
     int fit_nv;
+    /* A chart's step with more vertices than features is solved in the span
+     * of its features' singular directions above rank_tol of the largest
+     * (0: PARAM_SOLVE_RANK_TOL; < 0: every direction, in feature space). */
+    double rank_tol;
 } param_solve_data;
+
+#define PARAM_SOLVE_RANK_TOL 1e-7
 
 typedef struct param_solve_report {
     double energy_before, energy_after; /* conformal term at the vertices, before and after */
@@ -151,5 +157,15 @@ double param_output_solve_gradient_error(const param_mlp *f, const param_solve_d
  * are the scale-free energy's when d->mips_steps > 0. INFINITY on bad input,
  * a singular system or allocation failure. */
 double param_output_solve_dual_error(const param_mlp *f, const param_solve_data *d, double anchor);
+
+/* For tests: the largest difference, relative to the step's largest change,
+ * between the maps (pre-tanh, at the vertices) of one Gauss-Newton step of
+ * the per-chart heads' start (the shared layer, over every hidden layer's
+ * features, all vertices one block) solved in feature space and in the
+ * features' span above rank_tol (the reduced system); *rank: that span's
+ * dimension. INFINITY on bad input, a span as large as the features (no
+ * reduced system), a singular system or allocation failure. */
+double param_output_solve_reduced_error(const param_mlp *f, const param_solve_data *d, double anchor, double rank_tol,
+                                       int *rank);
 
 #endif
