@@ -815,6 +815,19 @@ static void reduced_eq_free(reduced_eq *q, const block *b)
 
 enum { REDUCED_CHUNK = 256 };
 
+/* φ̂ (K = H + 1 numbers) of the block's vertices from k0, up to
+ * REDUCED_CHUNK of them, as the rows of C; returns how many. */
+static int chunk_features(const solve_state *st, const block *b, int k0, double *C)
+{
+    int H = st->H, K = H + 1, m = b->nv - k0 < REDUCED_CHUNK ? b->nv - k0 : REDUCED_CHUNK;
+    for (int r = 0; r < m; r++) {
+        const float *p = st->phi + (size_t)b->verts[k0 + r] * H;
+        for (int i = 0; i < H; i++) C[(size_t)r * K + i] = p[i];
+        C[(size_t)r * K + H] = 1;
+    }
+    return m;
+}
+
 /* The block's reduced basis. Returns 1 when it has fewer directions than
  * features (the system is then this one), 0 when not (q is empty), -1 on
  * allocation failure. */
@@ -826,12 +839,7 @@ static int reduced_eq_init(reduced_eq *q, const solve_state *st, const block *b,
     double *C = mem_alloc(sizeof(double) * REDUCED_CHUNK * (size_t)K), *Y = NULL;
     if (!G || !w || !C) goto out;
     for (int k0 = 0; k0 < V; k0 += REDUCED_CHUNK) {
-        int m = V - k0 < REDUCED_CHUNK ? V - k0 : REDUCED_CHUNK;
-        for (int r = 0; r < m; r++) {
-            const float *p = st->phi + (size_t)b->verts[k0 + r] * H;
-            for (int i = 0; i < H; i++) C[(size_t)r * K + i] = p[i];
-            C[(size_t)r * K + H] = 1;
-        }
+        int m = chunk_features(st, b, k0, C);
         cblas_dsyrk(CblasRowMajor, CblasUpper, CblasTrans, K, m, 1.0, C, K, 1.0, G, K);
     }
     if (LAPACKE_dsyevd(LAPACK_ROW_MAJOR, 'V', 'U', K, G, K, w) != 0) { ret = 0; goto out; }
@@ -860,12 +868,7 @@ static int reduced_eq_init(reduced_eq *q, const solve_state *st, const block *b,
         for (int i = 0; i < K; i++) q->basis[(size_t)i * r + c] = G[(size_t)i * K + j] * s;
     }
     for (int k0 = 0; k0 < V; k0 += REDUCED_CHUNK) {
-        int m = V - k0 < REDUCED_CHUNK ? V - k0 : REDUCED_CHUNK;
-        for (int k = 0; k < m; k++) {
-            const float *p = st->phi + (size_t)b->verts[k0 + k] * H;
-            for (int i = 0; i < H; i++) C[(size_t)k * K + i] = p[i];
-            C[(size_t)k * K + H] = 1;
-        }
+        int m = chunk_features(st, b, k0, C);
         cblas_dgemm(CblasRowMajor, CblasNoTrans, CblasNoTrans, m, r, K, 1.0, C, K, q->basis, r, 0.0, Y, r);
         for (size_t i = 0; i < (size_t)m * r; i++) q->psi[(size_t)k0 * r + i] = (float)Y[i];
     }
