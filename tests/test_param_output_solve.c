@@ -314,6 +314,7 @@ int main(void)
         CHECK(rr.energy_after < rr.energy_before);
         CHECK(fabs(qr - qf) < 1e-4 * qf);
         free(hr); free(hf);
+        param_mlp_free(&fd);
     }
 
     /* Per-chart heads on two charts start from the shared layer: never worse, no new flip. */
