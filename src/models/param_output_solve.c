@@ -778,7 +778,7 @@ static int dual_eq_solve(dual_eq *q, const vertex_eq *e, const block *b, double 
 /* The Gauss-Newton step of a block with more vertices than features, in the
  * span its features have. A chart's K features are far from independent on
  * its vertices (the hidden layers' units and the Fourier terms repeat one
- * another: on spot's charts Φ̂ has 130-250 singular values above 1e-6 of
+ * another: on spot's charts Φ̂ has 145-250 singular values above 1e-7 of
  * the largest, of K = 420), and the feature-space system costs 6 V K² per
  * step to build. With G = Φ̂ᵀ Φ̂ = W Λ Wᵀ, B = W_r Λ_r^(-1/2) over the r
  * eigenvalues above rank_tol² of the largest and Ψ = Φ̂ B (V by r,
@@ -1019,8 +1019,8 @@ static int descend(solve_state *st, const block *b, reduced_eq *rq, int mips, do
         }
     }
     normal_eq_free(&q);
-    if (dual) { dual_eq_free(&dq, b); mem_free(sol); }
-    if (reduced) mem_free(sol);
+    if (dual) dual_eq_free(&dq, b);
+    if (dual || reduced) mem_free(sol);
     if (best_step != taken) { /* back to the best valid iterate */
         memcpy(theta, best, sizeof(double) * (size_t)n);
         map_block(st->phi, H, theta, b, st->z, st->uv);
@@ -1058,6 +1058,19 @@ static void theta_from_layer(const nn_linear *l, int H, double *theta)
 {
     for (int j = 0; j < 2; j++) {
         for (int i = 0; i < H; i++) theta[(size_t)j * (H + 1) + i] = l->w->data[(size_t)i * 2 + j];
+        theta[(size_t)j * (H + 1) + H] = l->b->data[j];
+    }
+}
+
+/* A head that is the shared output layer: zero weight on all but the last
+ * hidden layer, which comes last in a head's features (theta: 2(H + 1)
+ * numbers, zeroed, H the head width). */
+static void head_from_shared_layer(const param_mlp *f, double *theta)
+{
+    const nn_linear *l = &f->rest[f->depth - 2];
+    int W = f->width, H = param_mlp_head_width(f), off = H - W;
+    for (int j = 0; j < 2; j++) {
+        for (int i = 0; i < W; i++) theta[(size_t)j * (H + 1) + off + i] = l->w->data[(size_t)i * 2 + j];
         theta[(size_t)j * (H + 1) + H] = l->b->data[j];
     }
 }
@@ -1251,19 +1264,12 @@ neuv_status param_output_solve_heads(const param_mlp *f, const param_solve_data 
     memset(rep, 0, sizeof *rep);
     neuv_status s = check_f(f, anchor);
     if (s != NEUV_OK) return s;
-    /* A head reads every hidden layer; it starts as the shared output layer
-     * (zero weight on all but the last hidden layer, which comes last). */
-    int W = f->width, H = param_mlp_head_width(f), n = 2 * (H + 1), off = H - W;
+    /* A head reads every hidden layer; it starts as the shared output layer. */
+    int H = param_mlp_head_width(f), n = 2 * (H + 1);
     double *shared = mem_calloc((size_t)n, sizeof(double));
-    double *last = mem_alloc(sizeof(double) * 2 * (size_t)(W + 1));
     solve_state st;
-    if (!shared || !last) { mem_free(shared); mem_free(last); return error_nomem("output-layer solve"); }
-    theta_from_layer(&f->rest[f->depth - 2], W, last);
-    for (int j = 0; j < 2; j++) {
-        for (int i = 0; i < W; i++) shared[(size_t)j * (H + 1) + off + i] = last[(size_t)j * (W + 1) + i];
-        shared[(size_t)j * (H + 1) + H] = last[(size_t)j * (W + 1) + W];
-    }
-    mem_free(last);
+    if (!shared) return error_nomem("output-layer solve");
+    head_from_shared_layer(f, shared);
     s = solve_state_init(&st, f, d, anchor, 1, shared);
     if (s == NEUV_OK) {
         block all = {st.all_faces, st.all_verts, d->nf, d->nv};
@@ -1508,21 +1514,16 @@ double param_output_solve_reduced_error(const param_mlp *f, const param_solve_da
 {
     if (rank) *rank = 0;
     if (check_f(f, anchor) != NEUV_OK || param_mlp_head_width(f) <= 0) return INFINITY;
-    int W = f->width, H = param_mlp_head_width(f), K = H + 1, n = 2 * K;
-    double *theta = mem_calloc((size_t)n, sizeof(double)), *full = mem_alloc(sizeof(double) * (size_t)n);
-    double *red = mem_alloc(sizeof(double) * (size_t)n), *last = mem_alloc(sizeof(double) * 2 * (size_t)(W + 1));
+    int H = param_mlp_head_width(f), n = 2 * (H + 1);
+    double *theta = mem_calloc((size_t)n, sizeof(double)), *red = mem_alloc(sizeof(double) * (size_t)n);
     solve_state st;
     normal_eq q = {0};
     reduced_eq rq = {0};
     double worst = INFINITY;
     block all = {0};
     int got = 0;
-    if (!theta || !full || !red || !last) goto out;
-    theta_from_layer(&f->rest[f->depth - 2], W, last); /* the heads' start: the shared layer */
-    for (int j = 0; j < 2; j++) {
-        for (int i = 0; i < W; i++) theta[(size_t)j * K + H - W + i] = last[(size_t)j * (W + 1) + i];
-        theta[(size_t)j * K + H] = last[(size_t)j * (W + 1) + W];
-    }
+    if (!theta || !red) goto out;
+    head_from_shared_layer(f, theta); /* the heads' start */
     if (solve_state_init(&st, f, d, anchor, 1, theta) != NEUV_OK) { solve_state_free(&st); goto out; }
     all = (block){st.all_faces, st.all_verts, d->nf, d->nv};
     got = normal_eq_init(&q, n, 0) == NEUV_OK ? reduced_eq_init(&rq, &st, &all, rank_tol) : -1;
@@ -1534,14 +1535,13 @@ double param_output_solve_reduced_error(const param_mlp *f, const param_solve_da
         else gauss_newton_rows(d, &all, st.z, st.uv, st.uv0, st.mv, st.sigma, st.fold_s2, anchor, &st.eq);
         vertex_eq_flush(&st.eq, &(feature_rows){st.phi, H, 1, NULL}, NULL, all.verts, all.nv, &q);
         if (normal_eq_solve(&q, 0, NULL) == 0 && reduced_eq_solve(&rq, &st.eq, &all, red) == 0) {
-            memcpy(full, q.g, sizeof(double) * (size_t)n);
             /* Both steps' maps (pre-tanh) at the vertices, against the
-             * start's: the full step's in the trial buffers, the reduced
-             * one's over the start's once it is kept. */
+             * start's: the full step's (q.g) in the trial buffers, the
+             * reduced one's over the start's once it is kept. */
             double *z0 = mem_alloc(sizeof(double) * 2 * (size_t)d->nv), step = 0, diff = 0;
             if (z0) {
                 memcpy(z0, st.z, sizeof(double) * 2 * (size_t)d->nv);
-                map_block(st.phi, H, full, &all, st.tz, st.tuv);
+                map_block(st.phi, H, q.g, &all, st.tz, st.tuv);
                 map_block(st.phi, H, red, &all, st.z, st.uv);
                 for (int i = 0; i < 2 * d->nv; i++) {
                     step = fmax(step, fabs(st.tz[i] - z0[i]));
@@ -1556,7 +1556,7 @@ double param_output_solve_reduced_error(const param_mlp *f, const param_solve_da
     solve_state_free(&st);
 out:
     normal_eq_free(&q);
-    mem_free(theta); mem_free(full); mem_free(red); mem_free(last);
+    mem_free(theta); mem_free(red);
     return worst;
 }
 
